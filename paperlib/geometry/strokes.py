@@ -1,0 +1,149 @@
+"""Strokes and elements: the vector primitives every method shares.
+
+A *stroke* is one pen trace, a polyline with a width and a colour; an *element* is a
+group of strokes that a method treats as one object (a Hershey glyph, a hatch made of
+several sketchy lines, a flower drawn with five strokes). Hurtut 2009 (section 2) calls
+these "elements", Barla 2006 (section 2.1) groups strokes into "elements" by clustering.
+
+Both types are immutable: their coordinate arrays are read-only copies, so an element
+can be shared between a reference arrangement and the synthesised one without defensive
+copies.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Stroke", "Element", "as_points"]
+
+
+def as_points(points, *, name: str = "points", min_points: int = 1) -> np.ndarray:
+    """Validate and return a read-only float64 ``(n, 2)`` copy of ``points``.
+
+    Raises
+    ------
+    ValueError
+        If the array is not ``(n, 2)``, has fewer than ``min_points`` rows, or holds
+        NaN or infinite coordinates.
+    """
+    try:
+        array = np.array(points, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be numeric (n, 2) coordinates: {exc}") from None
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (n, 2), got {array.shape}")
+    if array.shape[0] < min_points:
+        raise ValueError(f"{name} needs at least {min_points} point(s), got {array.shape[0]}")
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name} contains NaN or infinite coordinates")
+    array.setflags(write=False)
+    return array
+
+
+@dataclass(frozen=True)
+class Stroke:
+    """One pen trace: a polyline of ``(n, 2)`` points, a width and a colour.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        Vertices in drawing order (n >= 1; a single point is a dot).
+    width : float
+        Pen width in the same units as the points (> 0).
+    color : str
+        Any SVG colour string, e.g. ``"#000000"`` or ``"black"``.
+    """
+
+    points: np.ndarray
+    width: float = 1.0
+    color: str = "#000000"
+
+    def __post_init__(self):
+        object.__setattr__(self, "points", as_points(self.points, name="stroke points"))
+        width = float(self.width)
+        if not np.isfinite(width) or width <= 0:
+            raise ValueError(f"stroke width must be a positive finite number, got {self.width!r}")
+        object.__setattr__(self, "width", width)
+        if not isinstance(self.color, str) or not self.color:
+            raise ValueError(f"stroke color must be a non-empty SVG colour string, got {self.color!r}")
+
+    def __len__(self) -> int:
+        return self.points.shape[0]
+
+    def __eq__(self, other):
+        if not isinstance(other, Stroke):
+            return NotImplemented
+        return (
+            self.width == other.width
+            and self.color == other.color
+            and np.array_equal(self.points, other.points)
+        )
+
+    __hash__ = None
+
+    def length(self) -> float:
+        """Arc length of the polyline."""
+        return float(np.hypot(*np.diff(self.points, axis=0).T).sum())
+
+    def transformed(self, matrix, offset=(0.0, 0.0)) -> "Stroke":
+        """Return the stroke mapped by ``x -> matrix @ x + offset``.
+
+        The width is scaled by sqrt(|det matrix|), the factor by which the map scales
+        lengths on average, so a uniformly scaled glyph keeps its look.
+        """
+        matrix = np.asarray(matrix, dtype=np.float64)
+        if matrix.shape != (2, 2) or not np.isfinite(matrix).all():
+            raise ValueError(f"matrix must be a finite 2x2 array, got shape {matrix.shape}")
+        offset = as_points(np.reshape(offset, (1, 2)), name="offset")[0]
+        scale = np.sqrt(abs(np.linalg.det(matrix)))
+        if scale == 0:
+            raise ValueError("matrix is singular: the stroke would collapse")
+        return Stroke(self.points @ matrix.T + offset, self.width * scale, self.color)
+
+
+@dataclass(frozen=True)
+class Element:
+    """A group of strokes treated as one object (Hurtut 2009, section 2).
+
+    Parameters
+    ----------
+    strokes : sequence of Stroke
+        At least one stroke.
+    name : str
+        Optional label (e.g. the glyph it came from); not used by any computation.
+    """
+
+    strokes: tuple = field(default_factory=tuple)
+    name: str = ""
+
+    def __post_init__(self):
+        strokes = tuple(self.strokes)
+        if not strokes:
+            raise ValueError("an element needs at least one stroke")
+        for i, stroke in enumerate(strokes):
+            if not isinstance(stroke, Stroke):
+                raise TypeError(f"element stroke {i} is a {type(stroke).__name__}, expected Stroke")
+        object.__setattr__(self, "strokes", strokes)
+
+    def __len__(self) -> int:
+        return len(self.strokes)
+
+    def __iter__(self):
+        return iter(self.strokes)
+
+    @property
+    def points(self) -> np.ndarray:
+        """All vertices of all strokes, stacked into one ``(n, 2)`` array."""
+        return np.vstack([stroke.points for stroke in self.strokes])
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Axis-aligned bounding box ``(xmin, ymin, xmax, ymax)`` of the vertices."""
+        points = self.points
+        (xmin, ymin), (xmax, ymax) = points.min(axis=0), points.max(axis=0)
+        return float(xmin), float(ymin), float(xmax), float(ymax)
+
+    def transformed(self, matrix, offset=(0.0, 0.0)) -> "Element":
+        """Return the element with every stroke mapped by ``x -> matrix @ x + offset``."""
+        return Element(tuple(s.transformed(matrix, offset) for s in self.strokes), self.name)

@@ -1,0 +1,430 @@
+"""Recording statistics and figures, and checking them against tolerances.
+
+A notebook calls :func:`start` once with its papermill parameters, then
+:func:`record` for every quantitative claim and :func:`save_figure` for every figure.
+Everything lands in ``out_dir`` (by convention ``figures/<notebook-stem>/``):
+``stats.json`` holds the run's seed, quality and statistics. :func:`check_stats`
+compares those files with ``tests/expected_stats.toml``.
+
+The expected file has one table per notebook and statistic::
+
+    [datasets_overview.n_coastlines]
+    value = 40
+    source = "ground truth: the loader is asked for 40 curves"
+
+    [hurtut2009_fig06_synthesis.ks_distance]
+    max = 0.1
+    source = "paper, section 4: ..."
+    paper = { max = 0.05 }       # override for quality = "paper" runs
+
+A spec holds ``source`` (required: where the number comes from) and either ``value``
+(with optional ``rtol``/``atol``; exact when both are absent) or ``min``/``max``.
+Statistics whose names start with ``time_`` are wall times: machine-dependent, so they
+are checked against an upper bound (``max``) only and ignored when two runs are compared.
+
+This module knows no method: it only moves numbers and files.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import os
+import re
+import tempfile
+import tomllib
+from dataclasses import dataclass
+from numbers import Integral, Real
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pandas as pd
+
+__all__ = [
+    "QUALITIES",
+    "STATS_FILE",
+    "atomic_path",
+    "check_stats",
+    "current_out_dir",
+    "load_expected",
+    "load_stats",
+    "record",
+    "save_figure",
+    "start",
+    "statistics_without_times",
+]
+
+QUALITIES = ("ci", "paper")
+STATS_FILE = "stats.json"
+TIME_PREFIX = "time_"
+CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "source", "ok", "reason"]
+
+_NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_.\-]*$")
+_MAX_ITEMS = 10_000  # a statistic is a number or a small table, never raw data
+_SPEC_KEYS = {"value", "rtol", "atol", "min", "max", "source"}
+_FILE_MODE = 0o644
+
+
+@dataclass(frozen=True)
+class _Run:
+    out_dir: Path
+    notebook: str
+
+
+_current_run: _Run | None = None
+
+
+# --------------------------------------------------------------------------- files
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
+
+    A reader never sees a half-written file: on an exception the temporary file is
+    removed and ``path`` is left as it was.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(handle)
+    os.chmod(temporary, _FILE_MODE)  # mkstemp makes 0600 files; outputs are for everyone to read
+    try:
+        yield Path(temporary)
+        os.replace(temporary, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
+        raise
+
+
+def _write_json(path, data) -> None:
+    with atomic_path(path) as temporary:
+        temporary.write_text(json.dumps(data, indent=1, sort_keys=False, allow_nan=False) + "\n")
+
+
+# --------------------------------------------------------------------------- recording
+
+
+def start(out_dir, *, seed, quality) -> Path:
+    """Begin a notebook run: create ``out_dir`` and a fresh ``stats.json`` in it.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        The notebook's figure folder, ``figures/<notebook-stem>/``; its name is taken
+        as the notebook's name.
+    seed : int
+        The run's seed, stored beside the statistics.
+    quality : {"ci", "paper"}
+        The run's quality, stored so that checks pick the matching tolerances.
+
+    Returns
+    -------
+    Path
+        The absolute output folder.
+    """
+    if quality not in QUALITIES:
+        raise ValueError(f"quality must be one of {QUALITIES}, got {quality!r}")
+    if not isinstance(seed, Integral) or isinstance(seed, bool):
+        raise ValueError(f"seed must be an int, got {seed!r}")
+    out_dir = Path(out_dir).resolve()
+    out_dir.mkdir(parents=True, exist_ok=True)
+    global _current_run
+    _current_run = _Run(out_dir, out_dir.name)
+    _write_json(
+        out_dir / STATS_FILE,
+        {"notebook": out_dir.name, "seed": int(seed), "quality": quality, "statistics": {}},
+    )
+    return out_dir
+
+
+def current_out_dir() -> Path:
+    """The output folder of the run begun by :func:`start`."""
+    return _require_run().out_dir
+
+
+def _require_run() -> _Run:
+    if _current_run is None:
+        raise RuntimeError("no run started: call paperlib.repro.start(out_dir, seed=..., quality=...) first")
+    return _current_run
+
+
+def _to_json_value(value, name: str):
+    """Convert NumPy scalars and arrays to plain JSON values, rejecting what JSON cannot hold."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (Integral, np.integer)):
+        return int(value)
+    if isinstance(value, (Real, np.floating)):
+        value = float(value)
+        if not math.isfinite(value):
+            raise ValueError(f"statistic {name!r} is {value}: record only finite numbers")
+        return value
+    if isinstance(value, str):
+        return value
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        if len(value) > _MAX_ITEMS:
+            raise ValueError(f"statistic {name!r} has {len(value)} items; at most {_MAX_ITEMS} are allowed")
+        return [_to_json_value(item, name) for item in value]
+    if isinstance(value, dict):
+        if len(value) > _MAX_ITEMS:
+            raise ValueError(f"statistic {name!r} has {len(value)} keys; at most {_MAX_ITEMS} are allowed")
+        if not all(isinstance(key, str) for key in value):
+            raise ValueError(f"statistic {name!r}: dictionary keys must be strings")
+        return {key: _to_json_value(item, name) for key, item in value.items()}
+    raise ValueError(
+        f"statistic {name!r} has type {type(value).__name__}; "
+        "record a number, bool, string, list or small dict"
+    )
+
+
+def record(name: str, value):
+    """Record a statistic of the current run in ``stats.json`` and return ``value``.
+
+    Recording the same name again replaces the earlier value (re-running a cell
+    interactively must not fail).
+
+    Parameters
+    ----------
+    name : str
+        Letters, digits, ``_``, ``.``, ``-``, starting with a letter. Names starting
+        with ``time_`` are wall times (checked against an upper bound only).
+    value : number, bool, str, list or dict
+        NumPy scalars and arrays are converted; NaN and infinities are rejected.
+    """
+    run = _require_run()
+    if not isinstance(name, str) or not _NAME_PATTERN.match(name):
+        raise ValueError(f"statistic name {name!r} must start with a letter and use only letters, digits, _ . -")
+    data = load_stats(run.out_dir / STATS_FILE)
+    data["statistics"][name] = _to_json_value(value, name)
+    _write_json(run.out_dir / STATS_FILE, data)
+    return value
+
+
+def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Path]:
+    """Save a matplotlib figure as ``<out_dir>/<name>.png`` (and ``.svg`` when asked).
+
+    Files are written atomically and without timestamps, so the same figure gives the
+    same bytes and an interrupted run leaves no partial file.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    run = _require_run()
+    if not isinstance(name, str) or not _NAME_PATTERN.match(name):
+        raise ValueError(f"figure name {name!r} must start with a letter and use only letters, digits, _ . -")
+    written = []
+    formats = [("png", {"Software": None})] + ([("svg", {"Date": None, "Creator": None})] if svg else [])
+    for extension, metadata in formats:
+        target = run.out_dir / f"{name}.{extension}"
+        # a fixed salt makes matplotlib's SVG element ids the same on every run
+        with atomic_path(target) as temporary, matplotlib.rc_context({"svg.hashsalt": "paperlib"}):
+            fig.savefig(temporary, format=extension, dpi=dpi, metadata=metadata, bbox_inches="tight")
+        written.append(target)
+    return written
+
+
+# --------------------------------------------------------------------------- checking
+
+
+def load_stats(path) -> dict:
+    """Read a ``stats.json`` file written by :func:`start` and :func:`record`."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"{path}: no stats.json (did the notebook call paperlib.repro.start?)") from None
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path}: not valid JSON ({exc})") from None
+    if not isinstance(data, dict) or not isinstance(data.get("statistics"), dict):
+        raise ValueError(f"{path}: expected an object with a 'statistics' table")
+    return data
+
+
+def statistics_without_times(data: dict) -> dict:
+    """The statistics of a loaded ``stats.json`` minus wall times (for comparing runs)."""
+    return {name: value for name, value in data["statistics"].items() if not name.startswith(TIME_PREFIX)}
+
+
+def load_expected(path) -> dict:
+    """Read and validate ``expected_stats.toml``: ``{notebook: {statistic: spec}}``."""
+    path = Path(path)
+    try:
+        expected = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"expected statistics file not found: {path}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: invalid TOML ({exc})") from None
+    for notebook, statistics in expected.items():
+        if not isinstance(statistics, dict):
+            raise ValueError(f"{path}: [{notebook}] must be a table of statistics")
+        for statistic, spec in statistics.items():
+            _validate_spec(spec, f"{path}: [{notebook}.{statistic}]", statistic)
+    return expected
+
+
+def _validate_spec(spec, where: str, statistic: str) -> None:
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where} must be a table with 'source' and 'value' or 'min'/'max'")
+    unknown = set(spec) - _SPEC_KEYS - set(QUALITIES)
+    if unknown:
+        raise ValueError(f"{where}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS | set(QUALITIES))}")
+    if not isinstance(spec.get("source"), str) or not spec["source"].strip():
+        raise ValueError(f"{where}: 'source' must say where the expected number comes from")
+    for quality in QUALITIES:
+        if quality in spec:
+            override = spec[quality]
+            if not isinstance(override, dict) or not set(override) <= _SPEC_KEYS - {"source"}:
+                raise ValueError(f"{where}.{quality}: an override may set only value, rtol, atol, min, max")
+            _validate_bounds({**spec, **override}, f"{where} ({quality})", statistic)
+    _validate_bounds(spec, where, statistic)
+
+
+def _validate_bounds(spec: dict, where: str, statistic: str) -> None:
+    if statistic.startswith(TIME_PREFIX):
+        if "max" not in spec or {"value", "min"} & set(spec):
+            raise ValueError(f"{where}: wall times ({TIME_PREFIX}*) are checked against 'max' only")
+    elif "value" not in spec and "min" not in spec and "max" not in spec:
+        raise ValueError(f"{where}: give 'value' (with rtol/atol) or 'min'/'max'")
+    for key in ("rtol", "atol"):
+        if key in spec and (not _is_number(spec[key]) or spec[key] < 0):
+            raise ValueError(f"{where}: {key} must be a non-negative number")
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _resolve_spec(spec: dict, quality: str | None) -> dict:
+    """The spec with the override for ``quality`` applied (bounds replace bounds)."""
+    base = {key: item for key, item in spec.items() if key not in QUALITIES}
+    override = spec.get(quality, {}) if quality else {}
+    if override and ({"value", "min", "max"} & set(override)):
+        base = {key: item for key, item in base.items() if key not in {"value", "rtol", "atol", "min", "max"}}
+    return {**base, **override}
+
+
+def _describe(spec: dict) -> tuple[str, str]:
+    """Human-readable (expected, tolerance) strings of a resolved spec."""
+    if "value" in spec:
+        tolerances = [f"{key}={spec[key]:g}" for key in ("rtol", "atol") if key in spec]
+        return json.dumps(spec["value"]), ", ".join(tolerances) or "exact"
+    expected = " and ".join(
+        f"{sign} {json.dumps(spec[key])}" for key, sign in (("min", ">="), ("max", "<=")) if key in spec
+    )
+    return expected, "bounds"
+
+
+def _compare(value, spec: dict) -> str:
+    """Return '' when ``value`` satisfies ``spec``, else the reason it does not."""
+    if "value" in spec:
+        return _compare_to_value(value, spec["value"], spec.get("rtol", 0.0), spec.get("atol", 0.0))
+    for item in value if isinstance(value, list) else [value]:
+        if not _is_number(item):
+            return f"expected a number, got {type(item).__name__} {item!r}"
+        if "min" in spec and item < spec["min"]:
+            return f"{item!r} is below the minimum {spec['min']!r}"
+        if "max" in spec and item > spec["max"]:
+            return f"{item!r} is above the maximum {spec['max']!r}"
+    return ""
+
+
+def _compare_to_value(value, expected, rtol: float, atol: float) -> str:
+    if isinstance(expected, list):
+        if not isinstance(value, list) or len(value) != len(expected):
+            return f"expected a list of {len(expected)} items, got {value!r}"[:200]
+        return _first_reason((f"item {i}", item, want, rtol, atol) for i, (item, want) in enumerate(zip(value, expected)))
+    if isinstance(expected, dict):
+        if not isinstance(value, dict) or value.keys() != expected.keys():
+            return f"expected a table with keys {sorted(expected)}, got {value!r}"[:200]
+        return _first_reason((f"key {key!r}", value[key], want, rtol, atol) for key, want in expected.items())
+    if _is_number(expected):
+        if not _is_number(value):
+            return f"expected a number, got {type(value).__name__} {value!r}"
+        if abs(value - expected) > atol + rtol * abs(expected):
+            return f"{value!r} differs from {expected!r} by {abs(value - expected):.3g}"
+        return ""
+    if type(value) is not type(expected) or value != expected:
+        return f"expected {expected!r}, got {value!r}"
+    return ""
+
+
+def _first_reason(items) -> str:
+    """The first failing comparison among (label, value, expected, rtol, atol) items, or ''."""
+    for label, value, expected, rtol, atol in items:
+        reason = _compare_to_value(value, expected, rtol, atol)
+        if reason:
+            return f"{label}: {reason}"
+    return ""
+
+
+def check_stats(figures_dir="figures", expected="tests/expected_stats.toml", notebooks=None) -> pd.DataFrame:
+    """Compare recorded statistics with the expected file.
+
+    Parameters
+    ----------
+    figures_dir : str or Path
+        Folder holding ``<notebook>/stats.json``.
+    expected : str, Path or dict
+        Path of ``expected_stats.toml`` or its already-loaded content.
+    notebooks : iterable of str, optional
+        Notebook stems to check; by default every notebook in the expected file.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per statistic with columns notebook, statistic, value, expected,
+        tolerance, source, ok, reason. A statistic recorded but not expected, or
+        expected but not recorded, is a failing row; so is a missing ``stats.json``.
+    """
+    expected = expected if isinstance(expected, dict) else load_expected(expected)
+    notebooks = sorted(expected) if notebooks is None else list(notebooks)
+    rows = []
+    for notebook in notebooks:
+        rows.extend(_check_notebook(Path(figures_dir) / notebook, notebook, expected.get(notebook)))
+    return pd.DataFrame(rows, columns=CHECK_COLUMNS)
+
+
+def _row(notebook, statistic, value=None, expected="", tolerance="", source="", reason=""):
+    return dict(
+        notebook=notebook,
+        statistic=statistic,
+        value=value,
+        expected=expected,
+        tolerance=tolerance,
+        source=source,
+        ok=not reason,
+        reason=reason,
+    )
+
+
+def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dict]:
+    if specs is None:
+        return [_row(notebook, "", reason="notebook has no entry in expected_stats.toml")]
+    try:
+        data = load_stats(folder / STATS_FILE)
+    except ValueError as exc:
+        return [_row(notebook, "", reason=str(exc))]
+    recorded = data["statistics"]
+    rows = []
+    for statistic, spec in specs.items():
+        resolved = _resolve_spec(spec, data.get("quality"))
+        expected_text, tolerance = _describe(resolved)
+        source = spec["source"]
+        if statistic not in recorded:
+            rows.append(_row(notebook, statistic, None, expected_text, tolerance, source, "expected but not recorded"))
+            continue
+        reason = _compare(recorded[statistic], resolved)
+        rows.append(_row(notebook, statistic, recorded[statistic], expected_text, tolerance, source, reason))
+    for statistic in recorded.keys() - specs.keys():
+        rows.append(
+            _row(notebook, statistic, recorded[statistic], reason="recorded but not in expected_stats.toml")
+        )
+    return rows

@@ -1,0 +1,301 @@
+"""Run the notebooks with papermill, check their statistics, write ``figures/INDEX.md``.
+
+This is what ``python -m paperlib reproduce`` and ``make reproduce`` do:
+
+1. find ``notebooks/*.ipynb`` (optionally those matching ``--only``);
+2. execute each with papermill on a ``python3`` kernel that is *this* interpreter
+   (a kernelspec written under ``build/jupyter``, never a kernel named in the
+   notebook's metadata), passing ``seed``, ``quality`` and ``out_dir``; the executed
+   copy goes to ``build/notebooks/``, the source stays output-free;
+3. each notebook writes into a staging folder ``build/staging/<stem>/`` that replaces
+   ``figures/<stem>/`` only when the notebook finished, so ``figures/`` never holds a
+   half-run notebook;
+4. check the recorded statistics against ``tests/expected_stats.toml`` and write
+   ``figures/INDEX.md``.
+
+Like :mod:`paperlib.repro`, this module knows no method.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import json
+import os
+import shutil
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from . import repro
+from .parallel import run_many
+
+__all__ = ["NotebookRun", "find_notebooks", "paper_and_figure", "reproduce", "run_notebook", "write_index"]
+
+PAPERS = {
+    "hurtut2009": "Hurtut, Landes, Thollot, Gousseau, Drouillhet & Coeurjolly 2009, "
+    "Appearance-guided synthesis of element arrangements by example",
+    "barla2006": "Barla, Breslav, Thollot, Sillion & Markosian 2006, Stroke pattern analysis and synthesis",
+    "kim2009": "Kim, Maciejewski, Isenberg, Andrews, Chen, Sousa & Ebert 2009, Stippling by example",
+    "alvarez2015": "Alvarez, Gomez & Cordero 2015, Abstract textures by a multi-layered texture sampler",
+    "simhon2001": "Simhon & Dudek 2001, Sketch interpretation and refinement using statistical models",
+}
+KERNEL_NAME = "python3"
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where the notebooks, figures, build products and expected statistics live."""
+
+    root: Path
+    notebooks: Path
+    figures: Path
+    build: Path
+    expected: Path
+
+    @classmethod
+    def of(cls, root=".", *, figures_dir=None, build_dir=None) -> "Layout":
+        """The project's standard layout under ``root``; figures and build may move elsewhere."""
+        root = Path(root).resolve()
+        return cls(
+            root=root,
+            notebooks=root / "notebooks",
+            figures=Path(figures_dir).resolve() if figures_dir else root / "figures",
+            build=Path(build_dir).resolve() if build_dir else root / "build",
+            expected=root / "tests" / "expected_stats.toml",
+        )
+
+
+@dataclass(frozen=True)
+class NotebookRun:
+    """Outcome of one notebook execution."""
+
+    notebook: str
+    ok: bool
+    seconds: float
+    error: str = ""
+
+
+def find_notebooks(notebooks_dir, pattern: str | None = None) -> list[Path]:
+    """The notebooks in ``notebooks_dir`` whose stem matches ``pattern``, sorted.
+
+    ``pattern`` is a shell glob on the stem (``"kim2009_*"``); without wildcards it
+    matches as a substring (``"fig07"``).
+
+    Raises
+    ------
+    ValueError
+        When no notebook matches, naming the pattern and the available notebooks.
+    """
+    notebooks = sorted(Path(notebooks_dir).glob("*.ipynb"))
+    if pattern:
+        glob = pattern if any(char in pattern for char in "*?[") else f"*{pattern}*"
+        notebooks = [path for path in notebooks if fnmatch.fnmatchcase(path.stem, glob)]
+    if not notebooks:
+        available = ", ".join(path.stem for path in sorted(Path(notebooks_dir).glob("*.ipynb"))) or "none"
+        raise ValueError(f"no notebook in {notebooks_dir} matches {pattern!r} (available: {available})")
+    return notebooks
+
+
+def paper_and_figure(stem: str) -> tuple[str, str]:
+    """``("kim2009", "fig07")`` for ``kim2009_fig07_examples``; ``("", "")`` otherwise."""
+    parts = stem.split("_")
+    if parts[0] in PAPERS:
+        figure = parts[1] if len(parts) > 2 and parts[1].startswith("fig") else ""
+        return parts[0], figure
+    return "", ""
+
+
+def _install_kernelspec(build_dir: Path) -> None:
+    """Make the kernel named ``python3`` run this interpreter, whatever else is installed.
+
+    Jupyter searches ``JUPYTER_PATH`` before the user's and the system's kernel folders,
+    so a kernelspec written there wins over a ``python3`` spec pointing elsewhere.
+    """
+    jupyter_dir = (build_dir / "jupyter").resolve()
+    spec_path = jupyter_dir / "kernels" / KERNEL_NAME / "kernel.json"
+    spec = {
+        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+        "display_name": f"Python 3 ({sys.executable})",
+        "language": "python",
+    }
+    if not spec_path.exists() or json.loads(spec_path.read_text()) != spec:
+        with repro.atomic_path(spec_path) as temporary:
+            temporary.write_text(json.dumps(spec, indent=1))
+    paths = os.environ.get("JUPYTER_PATH", "").split(os.pathsep)
+    if str(jupyter_dir) not in paths:
+        os.environ["JUPYTER_PATH"] = os.pathsep.join([str(jupyter_dir), *filter(None, paths)])
+
+
+def _first_line_of_error(exc: BaseException) -> str:
+    """One readable line: for a cell error, its exception name and message."""
+    ename, evalue = getattr(exc, "ename", None), getattr(exc, "evalue", None)
+    text = f"{ename}: {evalue}" if ename else f"{type(exc).__name__}: {exc}"
+    lines = [line for line in text.strip().splitlines() if line.strip()]
+    return lines[0] if lines else type(exc).__name__
+
+
+def _publish(staging: Path, target: Path) -> None:
+    """Replace ``target`` by the finished ``staging`` folder in two renames."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    retired = target.with_name(f".{target.name}.old")
+    shutil.rmtree(retired, ignore_errors=True)
+    if target.exists():
+        os.replace(target, retired)
+    os.replace(staging, target)
+    shutil.rmtree(retired, ignore_errors=True)
+
+
+def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None = None, timeout=None) -> NotebookRun:
+    """Execute one notebook with papermill and publish its figures on success.
+
+    Parameters
+    ----------
+    path : str or Path
+        The notebook.
+    layout : Layout
+        Where figures and build products go.
+    quality : {"ci", "paper"}
+    seed : int, optional
+        Overrides the notebook's own default seed.
+    timeout : float, optional
+        Per-cell time limit in seconds.
+    """
+    import papermill
+
+    if quality not in repro.QUALITIES:
+        raise ValueError(f"quality must be one of {repro.QUALITIES}, got {quality!r}")
+    path = Path(path).resolve()
+    _install_kernelspec(layout.build)
+    staging = layout.build / "staging" / path.stem
+    shutil.rmtree(staging, ignore_errors=True)
+    parameters = {"quality": quality, "out_dir": str(staging)}
+    if seed is not None:
+        parameters["seed"] = int(seed)
+    executed = layout.build / "notebooks" / path.name
+    executed.parent.mkdir(parents=True, exist_ok=True)
+    began = time.perf_counter()
+    try:
+        papermill.execute_notebook(
+            str(path),
+            str(executed),
+            parameters=parameters,
+            kernel_name=KERNEL_NAME,
+            language="python",
+            cwd=str(path.parent),
+            progress_bar=False,
+            execution_timeout=timeout,
+        )
+    except Exception as exc:  # a failing cell, a dead kernel, a timeout: report, don't crash the batch
+        return NotebookRun(path.stem, False, time.perf_counter() - began, _first_line_of_error(exc))
+    seconds = time.perf_counter() - began
+    if not (staging / repro.STATS_FILE).exists():
+        return NotebookRun(path.stem, False, seconds, "finished without writing stats.json (no repro.start call)")
+    _publish(staging, layout.figures / path.stem)
+    return NotebookRun(path.stem, True, seconds)
+
+
+def _run_task(task):
+    path, layout, quality, seed, timeout = task
+    return run_notebook(path, layout=layout, quality=quality, seed=seed, timeout=timeout)
+
+
+def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeout=None, progress=True,
+              figures_dir=None, build_dir=None):
+    """Run notebooks, check statistics, write the index.
+
+    Parameters
+    ----------
+    root : str or Path
+        Project root (``notebooks/``, ``tests/expected_stats.toml``).
+    quality : {"ci", "paper"}
+    only : str, optional
+        Glob or substring selecting notebooks (see :func:`find_notebooks`).
+    jobs : int
+        Notebooks run in parallel processes (through :func:`paperlib.parallel.run_many`).
+    seed : int, optional
+        Overrides every notebook's default seed.
+    timeout : float, optional
+        Per-cell time limit in seconds.
+    progress : bool
+        Show a tqdm progress bar.
+    figures_dir, build_dir : str or Path, optional
+        Put figures and build products elsewhere than ``root/figures`` and ``root/build``.
+
+    Returns
+    -------
+    runs : list of NotebookRun
+    table : pandas.DataFrame
+        The statistics check of :func:`paperlib.repro.check_stats` for the notebooks
+        that ran successfully.
+    """
+    layout = Layout.of(root, figures_dir=figures_dir, build_dir=build_dir)
+    expected = repro.load_expected(layout.expected)  # fail before any work when it is missing
+    notebooks = find_notebooks(layout.notebooks, only)
+    tasks = [(path, layout, quality, seed, timeout) for path in notebooks]
+    runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=progress, desc="notebooks")
+    finished = [run.notebook for run in runs if run.ok]
+    table = repro.check_stats(layout.figures, expected, notebooks=finished)
+    all_stems = [path.stem for path in find_notebooks(layout.notebooks)]
+    write_index(layout, all_stems, expected)
+    return runs, table
+
+
+def write_index(layout: Layout, stems, expected: dict) -> Path:
+    """Write ``figures/INDEX.md``: paper, figure, notebook, files and statistics."""
+    table = repro.check_stats(layout.figures, expected, notebooks=stems)
+    lines = [
+        "# Figures",
+        "",
+        "Written by `python -m paperlib reproduce`; do not edit. Each statistic is shown with",
+        "the value recorded by the last run, what `tests/expected_stats.toml` expects, and where",
+        "that expectation comes from.",
+        "",
+    ]
+    for stem in stems:
+        paper, figure = paper_and_figure(stem)
+        folder = layout.figures / stem
+        files = sorted(p.name for p in folder.iterdir() if p.is_file()) if folder.is_dir() else []
+        lines += [
+            f"## {stem}",
+            "",
+            f"- paper: {PAPERS.get(paper, 'none (project data)')}",
+            f"- figure: {figure or 'none'}",
+            f"- notebook: [`notebooks/{stem}.ipynb`](../notebooks/{stem}.ipynb)",
+            "- files: " + (", ".join(f"[{name}]({stem}/{name})" for name in files) or "none yet"),
+            "",
+            "| statistic | value | expected | tolerance | ok | source |",
+            "|---|---|---|---|---|---|",
+        ]
+        for row in table[table.notebook == stem].itertuples():
+            value = "" if row.value is None else json.dumps(row.value)
+            value = value if len(value) <= 60 else value[:57] + "..."
+            ok = "yes" if row.ok else f"NO: {row.reason}"
+            lines.append(f"| {row.statistic} | {value} | {row.expected} | {row.tolerance} | {ok} | {row.source} |")
+        lines.append("")
+    index = layout.figures / "INDEX.md"
+    with repro.atomic_path(index) as temporary:
+        temporary.write_text("\n".join(lines))
+    return index
+
+
+def format_summary(runs, table: pd.DataFrame) -> str:
+    """The text printed at the end of a reproduce run."""
+    lines = ["", "notebook runs:"]
+    lines += [f"  {'ok  ' if run.ok else 'FAIL'} {run.seconds:8.1f} s  {run.notebook}" for run in runs]
+    if len(table):
+        shown = table[["notebook", "statistic", "value", "expected", "tolerance", "ok"]].copy()
+        shown["value"] = shown["value"].map(lambda v: (json.dumps(v)[:40]) if v is not None else "")
+        lines += ["", "statistics:", shown.to_string(index=False)]
+    return "\n".join(lines)
+
+
+def failures(runs, table: pd.DataFrame) -> list[str]:
+    """One line per problem, naming the notebook."""
+    problems = [f"{run.notebook}: notebook failed: {run.error}" for run in runs if not run.ok]
+    for row in table[~table.ok].itertuples():
+        what = f"statistic {row.statistic!r}: " if row.statistic else ""
+        problems.append(f"{row.notebook}: {what}{row.reason}")
+    return problems

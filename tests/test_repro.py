@@ -1,0 +1,225 @@
+"""paperlib.repro: recording statistics and figures, checking tolerances."""
+
+import json
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from paperlib import repro
+
+
+@pytest.fixture
+def run_dir(tmp_path):
+    out = repro.start(tmp_path / "figures" / "demo_nb", seed=3, quality="ci")
+    yield out
+
+
+def write_expected(path, text):
+    path.write_text(text)
+    return path
+
+
+def test_start_writes_fresh_stats(run_dir):
+    repro.record("a", 1)
+    repro.start(run_dir, seed=4, quality="paper")
+    data = repro.load_stats(run_dir / "stats.json")
+    assert data == {"notebook": "demo_nb", "seed": 4, "quality": "paper", "statistics": {}}
+
+
+def test_record_converts_numpy_and_keeps_order(run_dir):
+    repro.record("count", np.int64(7))
+    repro.record("mean", np.float32(0.5))
+    repro.record("curve", np.array([1.0, 2.0]))
+    repro.record("flag", np.bool_(True))
+    repro.record("table", {"x": [1, 2], "y": "label"})
+    stats = repro.load_stats(run_dir / "stats.json")["statistics"]
+    assert list(stats) == ["count", "mean", "curve", "flag", "table"]
+    assert stats["count"] == 7 and isinstance(stats["count"], int)
+    assert stats["mean"] == 0.5 and stats["curve"] == [1.0, 2.0] and stats["flag"] is True
+
+
+def test_record_same_name_replaces(run_dir):
+    repro.record("a", 1)
+    repro.record("a", 2)
+    assert repro.load_stats(run_dir / "stats.json")["statistics"] == {"a": 2}
+
+
+@pytest.mark.parametrize(
+    "name, value, message",
+    [
+        ("nan", math.nan, "finite"),
+        ("inf", np.inf, "finite"),
+        ("obj", object(), "type object"),
+        ("bad name", 1, "must start with a letter"),
+        ("_x", 1, "must start with a letter"),
+        ("big", list(range(20_000)), "at most"),
+        ("keys", {1: 2}, "keys must be strings"),
+    ],
+)
+def test_record_rejects_bad_statistics(run_dir, name, value, message):
+    with pytest.raises(ValueError, match=message):
+        repro.record(name, value)
+    assert repro.load_stats(run_dir / "stats.json")["statistics"] == {}
+
+
+def test_start_validates(tmp_path):
+    with pytest.raises(ValueError, match="quality"):
+        repro.start(tmp_path, seed=0, quality="draft")
+    with pytest.raises(ValueError, match="seed"):
+        repro.start(tmp_path, seed=1.5, quality="ci")
+
+
+def test_save_figure_is_reproducible_and_leaves_no_temporaries(run_dir):
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    first = [path.read_bytes() for path in repro.save_figure(fig, "line", svg=True)]
+    second = [path.read_bytes() for path in repro.save_figure(fig, "line", svg=True)]
+    plt.close(fig)
+    assert first == second
+    assert sorted(p.name for p in run_dir.iterdir()) == ["line.png", "line.svg", "stats.json"]
+
+
+def test_atomic_path_keeps_old_file_on_error(tmp_path):
+    target = tmp_path / "f.txt"
+    target.write_text("old")
+    with pytest.raises(RuntimeError):
+        with repro.atomic_path(target) as temporary:
+            temporary.write_text("half")
+            raise RuntimeError("interrupted")
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["f.txt"]
+
+
+EXPECTED = """
+[demo_nb.count]
+value = 7
+source = "ground truth"
+
+[demo_nb.mean]
+value = 0.5
+rtol = 0.1
+source = "paper"
+
+[demo_nb.curve]
+value = [1.0, 2.0]
+atol = 1e-9
+source = "oracle"
+
+[demo_nb.ratio]
+min = 0.9
+max = 1.1
+source = "paper"
+paper = { min = 0.99 }
+
+[demo_nb.label]
+value = "ok"
+source = "ground truth"
+
+[demo_nb.time_total]
+max = 100
+source = "CI budget"
+"""
+
+
+def test_check_stats_all_ok(tmp_path, run_dir):
+    for name, value in [("count", 7), ("mean", 0.54), ("curve", [1.0, 2.0]), ("ratio", 0.95), ("label", "ok"),
+                        ("time_total", 3.0)]:
+        repro.record(name, value)
+    table = repro.check_stats(run_dir.parent, write_expected(tmp_path / "e.toml", EXPECTED))
+    assert list(table.columns) == repro.CHECK_COLUMNS
+    assert table.ok.all(), table[~table.ok]
+    assert len(table) == 6
+
+
+def test_check_stats_reports_each_problem(tmp_path, run_dir):
+    repro.record("count", 8)  # off by one, exact expected
+    repro.record("mean", "0.5")  # wrong type
+    repro.record("curve", [1.0])  # wrong length
+    repro.record("ratio", 1.2)  # above max
+    repro.record("extra", 1)  # not expected
+    repro.record("time_total", 300.0)  # too slow
+    table = repro.check_stats(run_dir.parent, write_expected(tmp_path / "e.toml", EXPECTED)).set_index("statistic")
+    reasons = table.reason.to_dict()
+    assert "differs" in reasons["count"]
+    assert "expected a number" in reasons["mean"]
+    assert "list of 2" in reasons["curve"]
+    assert "above the maximum" in reasons["ratio"]
+    assert reasons["label"] == "expected but not recorded"
+    assert reasons["extra"] == "recorded but not in expected_stats.toml"
+    assert "above the maximum" in reasons["time_total"]
+    assert not table.ok.any()
+
+
+def test_quality_override_applies(tmp_path):
+    out = repro.start(tmp_path / "figs" / "demo_nb", seed=0, quality="paper")
+    repro.record("ratio", 0.95)
+    spec = tmp_path / "e.toml"
+    spec.write_text('[demo_nb.ratio]\nmin = 0.9\nmax = 1.1\nsource = "paper"\npaper = { min = 0.99 }\n')
+    table = repro.check_stats(out.parent, spec)
+    assert not table.ok.iloc[0] and "below the minimum 0.99" in table.reason.iloc[0]
+
+
+def test_check_stats_missing_notebook_outputs(tmp_path):
+    table = repro.check_stats(tmp_path, write_expected(tmp_path / "e.toml", EXPECTED), notebooks=["demo_nb", "other"])
+    assert "no stats.json" in table.reason.iloc[0]
+    assert table.reason.iloc[1] == "notebook has no entry in expected_stats.toml"
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ('[nb.x]\nvalue = 1\n', "source"),
+        ('[nb.x]\nsource = "s"\n', "give 'value'"),
+        ('[nb.x]\nvalue = 1\nrtol = -1\nsource = "s"\n', "non-negative"),
+        ('[nb.x]\nvalue = 1\ntolerance = 1\nsource = "s"\n', "unknown keys"),
+        ('[nb.time_x]\nvalue = 1\nsource = "s"\n', "max' only"),
+        ('[nb.x]\nvalue = 1\nsource = "s"\nci = { source = "t" }\n', "override"),
+        ("[nb.x\n", "invalid TOML"),
+    ],
+)
+def test_load_expected_rejects_malformed_specs(tmp_path, text, message):
+    with pytest.raises(ValueError, match=message):
+        repro.load_expected(write_expected(tmp_path / "e.toml", text))
+
+
+def test_load_expected_missing_file(tmp_path):
+    with pytest.raises(ValueError, match="not found"):
+        repro.load_expected(tmp_path / "nope.toml")
+
+
+def test_statistics_without_times():
+    data = {"statistics": {"a": 1, "time_b": 2.0}}
+    assert repro.statistics_without_times(data) == {"a": 1}
+
+
+def test_record_without_start_is_an_error(monkeypatch):
+    monkeypatch.setattr(repro, "_current_run", None)
+    with pytest.raises(RuntimeError, match="start"):
+        repro.record("a", 1)
+
+
+def test_stats_file_is_plain_json(run_dir):
+    repro.record("a", 1.25)
+    assert json.loads((run_dir / "stats.json").read_text())["statistics"]["a"] == 1.25
+
+
+def test_tables_compare_key_by_key_with_tolerance(tmp_path):
+    out = repro.start(tmp_path / "figs" / "demo_nb", seed=0, quality="ci")
+    spec = tmp_path / "e.toml"
+    spec.write_text('[demo_nb.t]\nvalue = { a = 1.0, b = 2.0 }\natol = 0.1\nsource = "s"\n')
+    repro.record("t", {"a": 1.05, "b": 2.0})
+    assert repro.check_stats(out.parent, spec).ok.all()
+    repro.record("t", {"a": 1.05, "b": 2.5})
+    assert "key 'b'" in repro.check_stats(out.parent, spec).reason.iloc[0]
+    repro.record("t", {"a": 1.0})
+    assert "keys" in repro.check_stats(out.parent, spec).reason.iloc[0]
+
+
+def test_outputs_are_world_readable(run_dir):
+    repro.record("a", 1)
+    assert (run_dir / "stats.json").stat().st_mode & 0o777 == 0o644

@@ -1,0 +1,147 @@
+"""`python -m paperlib reproduce` on a throwaway project: success and every bad input."""
+
+import json
+import sys
+import textwrap
+
+import nbformat
+import pytest
+
+from paperlib import repro
+from paperlib.__main__ import main
+from paperlib.reproduce import find_notebooks, paper_and_figure
+
+pytestmark = pytest.mark.notebooks
+
+PARAMETERS = 'seed = 0\nquality = "ci"\nout_dir = "../figures/{stem}"'
+START = "from paperlib import repro\nrepro.start(out_dir, seed=seed, quality=quality)"
+
+
+def write_notebook(root, stem, body):
+    cells = [nbformat.v4.new_code_cell(PARAMETERS.format(stem=stem)), nbformat.v4.new_code_cell(START)]
+    cells[0].metadata["tags"] = ["parameters"]
+    cells.append(nbformat.v4.new_code_cell(textwrap.dedent(body)))
+    path = root / "notebooks" / f"{stem}.ipynb"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    nbformat.write(nbformat.v4.new_notebook(cells=cells), path)
+    return path
+
+
+@pytest.fixture
+def project(tmp_path):
+    write_notebook(
+        tmp_path,
+        "kim2009_fig01_demo",
+        """
+        import sys
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots()
+        ax.plot([0, 1])
+        repro.save_figure(fig, "line")
+        repro.record("answer", 6 * 7)
+        repro.record("executable", sys.executable)
+        repro.record("quality_seen", quality)
+        """,
+    )
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "expected_stats.toml").write_text(
+        textwrap.dedent(
+            f"""
+            [kim2009_fig01_demo.answer]
+            value = 42
+            source = "ground truth"
+
+            [kim2009_fig01_demo.executable]
+            value = {json.dumps(sys.executable)}
+            source = "the kernel must be this interpreter"
+
+            [kim2009_fig01_demo.quality_seen]
+            value = "ci"
+            source = "the --quality flag reaches the notebook"
+            """
+        )
+    )
+    return tmp_path
+
+
+def run_cli(project, *args):
+    return main(["reproduce", "--root", str(project), "--quality", "ci", *args])
+
+
+def test_success_publishes_figures_index_and_executed_copy(project, capsys):
+    source = (project / "notebooks" / "kim2009_fig01_demo.ipynb").read_text()
+    assert run_cli(project) == 0
+    out = capsys.readouterr().out
+    assert "all 1 notebook(s) ran and all 3 statistic(s)" in out
+    figures = project / "figures" / "kim2009_fig01_demo"
+    assert sorted(p.name for p in figures.iterdir()) == ["line.png", "stats.json"]
+    assert repro.load_stats(figures / "stats.json")["statistics"]["executable"] == sys.executable
+    assert (project / "notebooks" / "kim2009_fig01_demo.ipynb").read_text() == source  # still output-free
+    executed = nbformat.read(project / "build" / "notebooks" / "kim2009_fig01_demo.ipynb", as_version=4)
+    assert any(cell.get("outputs") is not None for cell in executed.cells)
+    index = (project / "figures" / "INDEX.md").read_text()
+    assert "Kim" in index and "fig01" in index and "| answer | 42 | 42 | exact | yes |" in index
+
+
+def test_unknown_pattern_is_one_clear_line(project, capsys):
+    assert run_cli(project, "--only", "nosuchfigure") == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nosuchfigure" in err[0] and "kim2009_fig01_demo" in err[0]
+
+
+def test_missing_expected_file(project, capsys):
+    (project / "tests" / "expected_stats.toml").unlink()
+    assert run_cli(project) == 2
+    assert "expected statistics file not found" in capsys.readouterr().err
+
+
+def test_failing_notebook_is_named_and_old_figures_survive(project, capsys):
+    assert run_cli(project) == 0
+    figures = project / "figures" / "kim2009_fig01_demo"
+    before = {p.name: p.read_bytes() for p in figures.iterdir()}
+    write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", 1)\nraise RuntimeError("boom")')
+    capsys.readouterr()
+    assert run_cli(project) == 1
+    err = capsys.readouterr().err
+    assert "FAILED kim2009_fig01_demo: notebook failed: RuntimeError: boom" in err
+    assert {p.name: p.read_bytes() for p in figures.iterdir()} == before
+
+
+def test_wrong_and_missing_statistics_fail(project, capsys):
+    write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", "42")\nrepro.record("stray", 1)')
+    assert run_cli(project) == 1
+    err = capsys.readouterr().err
+    assert "statistic 'answer': expected a number, got str" in err
+    assert "statistic 'executable': expected but not recorded" in err
+    assert "statistic 'stray': recorded but not in expected_stats.toml" in err
+
+
+def test_parallel_jobs_run_every_selected_notebook(project, capsys):
+    write_notebook(project, "simhon2001_fig02_other", 'repro.record("answer", 1)')
+    with (project / "tests" / "expected_stats.toml").open("a") as handle:
+        handle.write('\n[simhon2001_fig02_other.answer]\nvalue = 1\nsource = "ground truth"\n')
+    assert run_cli(project, "--jobs", "2") == 0
+    assert (project / "figures" / "simhon2001_fig02_other" / "stats.json").exists()
+    assert run_cli(project, "--only", "simhon*") == 0
+    assert "all 1 notebook(s)" in capsys.readouterr().out
+
+
+def test_find_notebooks_patterns(project):
+    write_notebook(project, "simhon2001_fig02_other", "pass")
+    folder = project / "notebooks"
+    assert [p.stem for p in find_notebooks(folder, "fig02")] == ["simhon2001_fig02_other"]
+    assert [p.stem for p in find_notebooks(folder, "*demo")] == ["kim2009_fig01_demo"]
+    assert len(find_notebooks(folder)) == 2
+
+
+def test_paper_and_figure():
+    assert paper_and_figure("alvarez2015_fig01-03_gallery") == ("alvarez2015", "fig01-03")
+    assert paper_and_figure("hurtut2009_ripley_L") == ("hurtut2009", "")
+    assert paper_and_figure("datasets_overview") == ("", "")
+
+
+def test_bad_jobs_rejected_by_argparse(project):
+    with pytest.raises(SystemExit):
+        run_cli(project, "--jobs", "0")
