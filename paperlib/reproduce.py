@@ -35,7 +35,7 @@ from .parallel import run_many
 __all__ = ["NotebookRun", "find_notebooks", "paper_and_figure", "reproduce", "run_notebook", "write_index"]
 
 PAPERS = {
-    "hurtut2009": "Hurtut, Landes, Thollot, Gousseau, Drouillhet & Coeurjolly 2009, "
+    "hurtut2009": "Hurtut, Landes, Thollot, Gousseau, Drouilhet & Coeurjolly 2009, "
     "Appearance-guided synthesis of element arrangements by example",
     "barla2006": "Barla, Breslav, Thollot, Sillion & Markosian 2006, Stroke pattern analysis and synthesis",
     "kim2009": "Kim, Maciejewski, Isenberg, Andrews, Chen, Sousa & Ebert 2009, Stippling by example",
