@@ -27,12 +27,9 @@ This module knows no method: it only moves numbers and files.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
-import os
 import re
-import tempfile
 import tomllib
 from dataclasses import dataclass
 from numbers import Integral, Real
@@ -41,6 +38,8 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pandas as pd
+
+from ._atomic import atomic_path
 
 __all__ = [
     "QUALITIES",
@@ -64,7 +63,6 @@ CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "sou
 _NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_.\-]*$")
 _MAX_ITEMS = 10_000  # a statistic is a number or a small table, never raw data
 _SPEC_KEYS = {"value", "rtol", "atol", "min", "max", "source"}
-_FILE_MODE = 0o644
 
 
 @dataclass(frozen=True)
@@ -77,27 +75,6 @@ _current_run: _Run | None = None
 
 
 # --------------------------------------------------------------------------- files
-
-
-@contextlib.contextmanager
-def atomic_path(path):
-    """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
-
-    A reader never sees a half-written file: on an exception the temporary file is
-    removed and ``path`` is left as it was.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
-    os.close(handle)
-    os.chmod(temporary, _FILE_MODE)  # mkstemp makes 0600 files; outputs are for everyone to read
-    try:
-        yield Path(temporary)
-        os.replace(temporary, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(temporary)
-        raise
 
 
 def _write_json(path, data) -> None:

@@ -1,18 +1,34 @@
-"""Shared vector geometry: strokes, elements and closed curves.
+"""Shared vector geometry: strokes, elements, closed curves, oriented boxes, Hausdorff, SVG.
 
 This floor imports no other part of paperlib; every method builds on it.
 """
 
+from .boxes import OrientedBox, OrientedBoxes, oriented_bounding_box, oriented_bounding_boxes
 from .curves import drop_repeated_vertices, oriented_ccw, resample_closed_curve, ring_centroid, signed_area
-from .strokes import Element, Stroke, as_points
+from .hausdorff import directed_hausdorff, directed_hausdorff_boxes, hausdorff, hausdorff_boxes
+from .strokes import Element, StackedStrokes, Stroke, as_points, stack_strokes
+from .svg import read_svg, svg_string, write_svg
 
 __all__ = [
     "Element",
+    "OrientedBox",
+    "OrientedBoxes",
+    "StackedStrokes",
     "Stroke",
     "as_points",
+    "directed_hausdorff",
+    "directed_hausdorff_boxes",
     "drop_repeated_vertices",
+    "hausdorff",
+    "hausdorff_boxes",
+    "oriented_bounding_box",
+    "oriented_bounding_boxes",
     "oriented_ccw",
+    "read_svg",
     "resample_closed_curve",
     "ring_centroid",
     "signed_area",
+    "stack_strokes",
+    "svg_string",
+    "write_svg",
 ]

@@ -13,10 +13,11 @@ copies.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
-__all__ = ["Stroke", "Element", "as_points"]
+__all__ = ["Element", "StackedStrokes", "Stroke", "as_points", "stack_strokes"]
 
 
 def as_points(points, *, name: str = "points", min_points: int = 1) -> np.ndarray:
@@ -147,3 +148,97 @@ class Element:
     def transformed(self, matrix, offset=(0.0, 0.0)) -> "Element":
         """Return the element with every stroke mapped by ``x -> matrix @ x + offset``."""
         return Element(tuple(s.transformed(matrix, offset) for s in self.strokes), self.name)
+
+
+# --------------------------------------------------------------------------- many elements as flat arrays
+
+
+@dataclass(frozen=True, eq=False)
+class StackedStrokes:
+    """The strokes of many elements as flat arrays, for vectorised geometry.
+
+    Built by :func:`stack_strokes`. Consecutive repeated vertices are dropped, so every segment
+    has positive length; a stroke of zero length keeps a single vertex and has no segment.
+
+    Attributes
+    ----------
+    vertices : ndarray, shape (n, 2)
+        All vertices, stroke after stroke, element after element.
+    stroke_offsets : ndarray, shape (k + 1,)
+        Stroke ``i`` owns ``vertices[stroke_offsets[i]:stroke_offsets[i + 1]]``.
+    stroke_element : ndarray, shape (k,)
+        Index of the element each stroke belongs to (non-decreasing).
+    stroke_width : ndarray, shape (k,)
+        Pen width of each stroke.
+    n_elements : int
+    """
+
+    vertices: np.ndarray
+    stroke_offsets: np.ndarray
+    stroke_element: np.ndarray
+    stroke_width: np.ndarray
+    n_elements: int
+
+    @cached_property
+    def vertex_stroke(self) -> np.ndarray:
+        """Stroke index of every vertex, shape ``(n,)``."""
+        return np.repeat(np.arange(self.stroke_element.size), np.diff(self.stroke_offsets))
+
+    @cached_property
+    def vertex_element(self) -> np.ndarray:
+        """Element index of every vertex, shape ``(n,)``."""
+        return self.stroke_element[self.vertex_stroke]
+
+    @property
+    def element_vertex_offsets(self) -> np.ndarray:
+        """Element ``e`` owns vertices ``[offsets[e], offsets[e + 1])``, shape ``(n_elements + 1,)``."""
+        counts = np.bincount(self.vertex_element, minlength=self.n_elements)
+        return np.concatenate([[0], np.cumsum(counts)])
+
+    @cached_property
+    def segment_starts(self) -> np.ndarray:
+        """Index of the first vertex of every segment (the next vertex is its end)."""
+        last_of_stroke = np.zeros(self.vertices.shape[0], dtype=bool)
+        last_of_stroke[self.stroke_offsets[1:] - 1] = True
+        return np.flatnonzero(~last_of_stroke)
+
+
+def stack_strokes(elements) -> StackedStrokes:
+    """Stack the strokes of ``elements`` into flat arrays (see :class:`StackedStrokes`).
+
+    Parameters
+    ----------
+    elements : sequence of Element
+        At least one element.
+
+    Raises
+    ------
+    TypeError
+        If an item is not an :class:`~paperlib.geometry.Element`.
+    ValueError
+        If there are no elements.
+    """
+    if isinstance(elements, Element):
+        raise TypeError("expected a sequence of Element, got a single Element (wrap it in a list)")
+    elements = list(elements)
+    if not elements:
+        raise ValueError("expected at least one element, got none")
+    strokes, stroke_element = [], []
+    for index, element in enumerate(elements):
+        if not isinstance(element, Element):
+            raise TypeError(f"item {index} is a {type(element).__name__}, expected Element")
+        strokes.extend(element.strokes)
+        stroke_element.extend([index] * len(element.strokes))
+    counts = np.array([len(stroke) for stroke in strokes])
+    vertices = np.concatenate([stroke.points for stroke in strokes])
+    vertex_stroke = np.repeat(np.arange(len(strokes)), counts)
+    repeated = np.zeros(vertices.shape[0], dtype=bool)
+    repeated[1:] = (vertex_stroke[1:] == vertex_stroke[:-1]) & np.all(vertices[1:] == vertices[:-1], axis=1)
+    kept_counts = np.bincount(vertex_stroke[~repeated], minlength=len(strokes))
+    return StackedStrokes(
+        vertices=vertices[~repeated],
+        stroke_offsets=np.concatenate([[0], np.cumsum(kept_counts)]),
+        stroke_element=np.array(stroke_element),
+        stroke_width=np.array([stroke.width for stroke in strokes]),
+        n_elements=len(elements),
+    )

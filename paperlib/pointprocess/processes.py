@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from paperlib._checks import positive_number
+
 from .pattern import PointPattern
 from .window import Window
 
@@ -19,13 +21,6 @@ def _check_window(window) -> Window:
     if not isinstance(window, Window):
         raise ValueError(f"window must be a paperlib.pointprocess.Window, got {type(window).__name__}")
     return window
-
-
-def _positive(value, name: str, *, allow_zero: bool = False) -> float:
-    value = float(value)
-    if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
-        raise ValueError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} finite number, got {value}")
-    return value
 
 
 def rpoispp(intensity, window: Window, *, categories=None, rng=None) -> PointPattern:
@@ -49,7 +44,7 @@ def rpoispp(intensity, window: Window, *, categories=None, rng=None) -> PointPat
     window = _check_window(window)
     intensity = np.atleast_1d(np.asarray(intensity, dtype=np.float64))
     for value in intensity:
-        _positive(value, "intensity", allow_zero=True)
+        positive_number(value, "intensity", allow_zero=True)
     rng = np.random.default_rng(rng)
     counts = rng.poisson(intensity * window.area)
     points = window.uniform_points(int(counts.sum()), rng)
@@ -72,7 +67,7 @@ def rMatClust(kappa: float, scale: float, mu: float, window: Window, *, rng=None
     Matérn, B. (1960). Spatial variation. spatstat's ``rMatClust``.
     """
     window = _check_window(window)
-    kappa, scale, mu = _positive(kappa, "kappa"), _positive(scale, "scale"), _positive(mu, "mu")
+    kappa, scale, mu = positive_number(kappa, "kappa"), positive_number(scale, "scale"), positive_number(mu, "mu")
     rng = np.random.default_rng(rng)
     frame = Window.rectangle(
         (window.xrange[0] - scale, window.xrange[1] + scale), (window.yrange[0] - scale, window.yrange[1] + scale)

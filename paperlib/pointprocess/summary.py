@@ -50,6 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from paperlib._checks import positive_number
+
 from . import _pairs
 from .pattern import PointPattern
 from .window import Window
@@ -384,13 +386,13 @@ def pcf(pattern: PointPattern, r=None, *, correction=("translate", "isotropic"),
     _require_points(pattern.n, 2, "pcf needs at least 2 points")
     if divisor not in ("r", "d"):
         raise ValueError(f"divisor must be 'r' or 'd', got {divisor!r}")
-    stoyan = _checked_positive(stoyan, "stoyan")
+    stoyan = positive_number(stoyan, "stoyan")
     r = _r_grid(pattern.window, pattern.intensity, r, rmax)
     if bw is None:
         halfwidth = stoyan / np.sqrt(pattern.intensity)
         bw, reach = halfwidth / np.sqrt(5.0), halfwidth
     else:
-        bw = _checked_positive(bw, "bw")
+        bw = positive_number(bw, "bw")
         reach = 3.0 * bw
     density = _EpanechnikovDensity(bw, r)
     binned = _binned_pair_weights(pattern, r[-1] + reach, density, corrections, divisor)
@@ -649,17 +651,7 @@ def _parsed_corrections(correction, allowed: tuple) -> tuple:
 
 
 def _checked_rmax(rmax) -> float:
-    return _checked_positive(rmax, "rmax")
-
-
-def _checked_positive(value, name: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(value) or value <= 0:
-        raise ValueError(f"{name} must be positive and finite, got {value}")
-    return value
+    return positive_number(rmax, "rmax")
 
 
 def _checked_flag(value, name: str) -> bool:
