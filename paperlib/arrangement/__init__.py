@@ -1,10 +1,26 @@
 """Hurtut 2009 pipeline: element features, appearance categorization, arrangement synthesis.
 
-Built on :mod:`paperlib.geometry`, :mod:`paperlib.acontrario` and :mod:`paperlib.pointprocess`.
-So far: the appearance features of section 2.1 (:func:`element_features`) and the robust PCA
-(ROBPCA) of section 2.2 (:func:`robust_pca`).
+Built on :mod:`paperlib.geometry`, :mod:`paperlib.acontrario` and :mod:`paperlib.pointprocess`:
+
+- :func:`element_features`: the five appearance features of section 2.1;
+- :func:`categorize`: section 2.2, maximal meaningful modes of the area histogram, then of the
+  first robust principal component (:func:`robust_pca`, ROBPCA) of the other features;
+- :func:`fit` and :func:`synthesize`: the multitype Strauss hard-core model of section 3 fitted
+  on element positions, simulated by Metropolis-Hastings in any window (with a density brush),
+  reference elements pasted per category (section 3.3); :func:`render` and ``Arrangement.to_svg``.
 """
 
+from .categorize import (
+    DEFAULT_BINS,
+    MIN_FIT_SIZE,
+    MIN_SPLIT_SIZE,
+    AreaCategory,
+    Categorization,
+    FeatureHistogram,
+    adjusted_rand_index,
+    categorize,
+    unwrapped_orientation,
+)
 from .features import (
     AREA_FRACTION,
     COUNT_SCALE,
@@ -19,9 +35,13 @@ from .features import (
     normalized_orientation,
 )
 from .robpca import DistanceCutoffs, ExactFitError, RobustPCA, robust_pca, subset_size
+from .synthesis import Arrangement, ArrangementModel, element_positions, fit, render, synthesize
 
 __all__ = [
-    "AREA_FRACTION", "COUNT_SCALE", "DistanceCutoffs", "ELONGATION_CAP", "ExactFitError", "ORIENTATION_PERIOD",
-    "RobustPCA", "crossing_points", "element_features", "extremity_points", "normalized_area", "normalized_count",
-    "normalized_elongation", "normalized_orientation", "robust_pca", "subset_size",
+    "AREA_FRACTION", "Arrangement", "ArrangementModel", "AreaCategory", "COUNT_SCALE", "Categorization",
+    "DEFAULT_BINS", "DistanceCutoffs", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
+    "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "categorize", "crossing_points",
+    "element_features", "element_positions", "extremity_points", "fit", "normalized_area", "normalized_count",
+    "normalized_elongation", "normalized_orientation", "render", "robust_pca", "subset_size", "synthesize",
+    "unwrapped_orientation",
 ]

@@ -11,17 +11,32 @@ licence and size:
 - :mod:`.images`: photographs and grayscale test images bundled in scikit-image.
 - :mod:`.outlines`: leaf, flower and suit outlines of the DejaVu font bundled with
   matplotlib (shapes with large-scale structure).
+- :mod:`.exemplars`: documented, seeded generators of element arrangements made of Hershey
+  glyphs placed by point processes, with their ground truth (Hurtut 2009's exemplars).
 """
 
 from .coastlines import GshhsPolygon, coastlines, gshhs_polygons, gshhs_resolutions
 from .countries import country_english_names, country_names, country_outline
+from .exemplars import (
+    Exemplar,
+    amacrine_exemplar,
+    big_small_exemplar,
+    hatching_exemplar,
+    lattice_exemplar,
+    near_identical_exemplar,
+    regularity_exemplar,
+    two_category_exemplar,
+)
 from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey_glyphs
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
 from .outlines import glyph_outline, glyph_outlines, outline_names
 
 __all__ = [
     "DEFAULT_STROKE_WIDTH",
+    "Exemplar",
     "GshhsPolygon",
+    "amacrine_exemplar",
+    "big_small_exemplar",
     "coastlines",
     "country_english_names",
     "country_names",
@@ -30,12 +45,17 @@ __all__ = [
     "glyph_outlines",
     "grayscale_image",
     "grayscale_names",
+    "hatching_exemplar",
     "gshhs_polygons",
     "gshhs_resolutions",
     "hershey_fonts",
     "hershey_glyph",
     "hershey_glyphs",
+    "lattice_exemplar",
+    "near_identical_exemplar",
     "outline_names",
     "photograph",
     "photograph_names",
+    "regularity_exemplar",
+    "two_category_exemplar",
 ]

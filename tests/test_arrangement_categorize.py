@@ -1,0 +1,249 @@
+"""paperlib.arrangement.categorize: Hurtut 2009 section 2.2 categorization and the adjusted Rand index."""
+
+import numpy as np
+import pytest
+
+from paperlib.arrangement.categorize import (
+    Categorization,
+    adjusted_rand_index,
+    categorize,
+    unwrapped_orientation,
+)
+from paperlib.datasets.hershey import hershey_glyph
+
+REFERENCE_AREA = 16.0  # a large futural 'o' (box 0.476) is then ~0.6 of 5% of it: area bin 5 or 6
+O = hershey_glyph("o")
+X = hershey_glyph("x")
+X_SCALE = np.sqrt(0.47619 / 0.408163)  # 'x' scaled to the box area of 'o'
+
+
+def placed(glyph, scale, n, rng, rotation=0.05, jitter=0.03, base_angle=0.0):
+    """n copies of a glyph at random positions, scale jittered by a few %, rotated a little."""
+    out = []
+    for _ in range(n):
+        angle = base_angle + rng.uniform(-rotation, rotation)
+        s = scale * (1 + rng.uniform(-jitter, jitter))
+        matrix = s * np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+        out.append(glyph.transformed(matrix, rng.uniform(0, 4, 2)))
+    return out
+
+
+def three_kinds(seed=1):
+    rng = np.random.default_rng(seed)
+    elements = placed(O, 0.55, 30, rng) + placed(O, 1.0, 30, rng) + placed(X, X_SCALE, 30, rng)
+    truth = np.repeat([0, 1, 2], 30)
+    order = rng.permutation(90)
+    return [elements[i] for i in order], truth[order]
+
+
+# --------------------------------------------------------------------------- categorization
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_small_o_large_o_large_x_give_three_categories(seed):
+    elements, truth = three_kinds(seed)
+    result = categorize(elements, REFERENCE_AREA, rng=0)
+    assert isinstance(result, Categorization)
+    assert adjusted_rand_index(result.labels, truth) == 1.0
+    assert result.n_categories == 3
+    assert sorted(result.counts.tolist()) == [30, 30, 30]
+    # Area first: small and large elements are two area modes; the large ones split by shape.
+    assert len(result.area_histogram.modes) == 2
+    assert result.area_histogram.counts.sum() == 90
+    assert result.categories == ("area0", "area1.shape0", "area1.shape1")
+    small, large = result.area_categories
+    assert small.status == "split" and small.categories == ("area0",)
+    assert large.status == "split" and large.pca_method == "ROBPCA"
+    assert len(large.histogram.modes) == 2 and large.histogram.outliers == ()
+    assert large.pca.scores.shape == (60, 1)
+    # The 'x' (4 extremities, 1 crossing) and the 'o' are told apart along the count features.
+    assert large.pca_features == ("elongation", "orientation", "extremities", "crossings")
+    assert np.abs(large.component[[2, 3]]).sum() > 0.9
+    assert result.small_categories == ()
+    assert result.labels.dtype == np.int64 and set(result.labels) == {0, 1, 2}
+
+
+def test_without_the_appearance_stage_the_kinds_would_mix():
+    # The same data with no category large enough to split: area alone gives 2 categories.
+    elements, truth = three_kinds()
+    result = categorize(elements, REFERENCE_AREA, min_category_size=100, rng=0)
+    assert result.categories == ("area0", "area1")
+    assert all(report.status == "too_few" for report in result.area_categories)
+    assert adjusted_rand_index(result.labels, truth) < 0.7
+
+
+def test_single_kind_is_one_category():
+    rng = np.random.default_rng(5)
+    result = categorize(placed(X, 1.0, 40, rng), REFERENCE_AREA, rng=0)
+    assert result.categories == ("area0",)
+    assert result.counts.tolist() == [40]
+    assert (result.labels == 0).all()
+
+
+def test_huge_elements_form_an_outlier_category():
+    rng = np.random.default_rng(7)
+    elements = placed(O, 0.55, 30, rng) + placed(X, 0.55 * X_SCALE, 30, rng) + placed(O, 4.0, 2, rng)
+    result = categorize(elements, REFERENCE_AREA, rng=0)
+    assert result.categories == ("area0.shape0", "area0.shape1", "outlier0")
+    assert result.members("outlier0").tolist() == [60, 61]
+    assert result.features["large"].iloc[60:].all()  # capped at area 1: the last bin
+    ((start, end),) = result.area_histogram.outliers  # the run of non-mode bins up to the last
+    assert end == 9 and result.area_histogram.counts[start:].sum() == 2
+    assert result.small_categories == ("outlier0",)
+    assert result.is_outlier.tolist() == [False, False, True]
+    assert result.area_categories[-1].status == "too_few"
+
+
+def test_exact_fit_falls_back_to_the_classical_component():
+    # 25 identical 'o' and 5 'x' of the same area: ROBPCA's h-subset is an exact fit.
+    rng = np.random.default_rng(3)
+    elements = [O.transformed(np.eye(2), rng.uniform(0, 4, 2)) for _ in range(25)]
+    elements += [X.transformed(X_SCALE * np.eye(2), rng.uniform(0, 4, 2)) for _ in range(5)]
+    result = categorize(elements, REFERENCE_AREA, rng=0)
+    (report,) = result.area_categories
+    assert report.pca_method == "classical" and report.pca is None and "exact fit" in report.note
+    assert result.categories == ("area0.shape0", "area0.outlier0")  # 5 of 30 in one bin: no mode
+    assert result.counts.tolist() == [25, 5]
+    assert (result.labels[25:] == 1).all()
+
+
+def test_identical_feature_vectors_stay_one_category():
+    rng = np.random.default_rng(4)
+    elements = [O.transformed(np.eye(2), rng.uniform(0, 4, 2)) for _ in range(12)]
+    result = categorize(elements, REFERENCE_AREA)
+    assert result.categories == ("area0",)
+    assert result.area_categories[0].status == "constant"
+    assert result.area_categories[0].histogram is None
+
+
+def test_small_area_categories_are_not_split_and_are_reported():
+    rng = np.random.default_rng(8)
+    elements = placed(O, 1.0, 4, rng) + placed(X, X_SCALE, 4, rng) + placed(O, 0.4, 2, rng)
+    result = categorize(elements, REFERENCE_AREA, rng=0)
+    assert all(report.status == "too_few" for report in result.area_categories)
+    assert result.counts.sum() == 10
+    assert set(result.small_categories) == {name for name, count in zip(result.categories, result.counts) if count < 3}
+    assert len(result.small_categories) >= 1
+
+
+def test_orientation_across_the_x_axis_is_one_category():
+    # 'x' lying on its side: axis angles straddle 0 / pi. The paper's linear feature cuts them.
+    rng = np.random.default_rng(2)
+    lying = placed(X, X_SCALE, 30, rng, rotation=0.1, base_angle=np.pi / 2)
+    upright = placed(O, 1.0, 30, rng, rotation=0.1)
+    truth = np.repeat([0, 1], 30)
+    result = categorize(lying + upright, REFERENCE_AREA, rng=0)
+    assert adjusted_rand_index(result.labels, truth) == 1.0
+    orientation = result.features["orientation"].to_numpy()[:30]
+    assert orientation.min() < 0.05 and orientation.max() > 0.45  # really straddles the wrap
+    circular = categorize(lying + upright, REFERENCE_AREA, orientation="circular", rng=0)
+    assert circular.parameters["orientation"] == "circular"
+    assert adjusted_rand_index(circular.labels, truth) == 1.0
+    linear = categorize(lying + upright, REFERENCE_AREA, orientation="linear", rng=0)
+    assert adjusted_rand_index(linear.labels, truth) < 1.0  # the paper's feature cuts the 'x' in two
+
+
+def test_unwrapped_orientation():
+    values = np.array([0.49, 0.01, 0.48, 0.02, 0.25])
+    unwrapped = unwrapped_orientation(values)
+    assert np.all((unwrapped >= 0) & (unwrapped < 0.5))
+    # The widest gap is between 0.02 and 0.25 (0.23): the cut is at 0.135.
+    np.testing.assert_allclose(unwrapped, (values - 0.135) % 0.5)
+    np.testing.assert_allclose(np.diff(np.sort(unwrapped[[0, 1, 2, 3]])), [0.01, 0.02, 0.01])
+
+
+def test_deterministic_for_a_seed():
+    elements, _ = three_kinds(4)
+    first = categorize(elements, REFERENCE_AREA, rng=11)
+    second = categorize(elements, REFERENCE_AREA, rng=np.random.default_rng(11))
+    assert np.array_equal(first.labels, second.labels)
+    for a, b in zip(first.area_categories, second.area_categories):
+        assert (a.component is None) == (b.component is None)
+        if a.component is not None:
+            assert a.component.tobytes() == b.component.tobytes()
+            assert a.histogram.values.tobytes() == b.histogram.values.tobytes()
+
+
+def test_data_range_histograms_are_offered():
+    elements, truth = three_kinds(1)
+    result = categorize(elements, REFERENCE_AREA, histogram_range="data", rng=0)
+    assert result.parameters["histogram_range"] == "data"
+    edges = result.area_histogram.edges
+    assert edges[0] == pytest.approx(result.features["area"].min())
+    assert edges[-1] == pytest.approx(result.features["area"].max())
+
+
+def test_report_is_read_only():
+    elements, _ = three_kinds(1)
+    result = categorize(elements, REFERENCE_AREA, rng=0)
+    with pytest.raises(ValueError):
+        result.labels[0] = 5
+    with pytest.raises(ValueError):
+        result.area_categories[1].histogram.values[0] = 0.0
+
+
+@pytest.mark.parametrize(
+    "args, kwargs, error",
+    [
+        (([], REFERENCE_AREA), {}, ValueError),
+        (([O], 0.0), {}, ValueError),
+        (([O], -1.0), {}, ValueError),
+        (([O], float("nan")), {}, ValueError),
+        (([O, "x"], REFERENCE_AREA), {}, TypeError),
+        ((O, REFERENCE_AREA), {}, TypeError),
+        ((5, REFERENCE_AREA), {}, TypeError),
+        (([O], REFERENCE_AREA), {"bins": 1}, ValueError),
+        (([O], REFERENCE_AREA), {"bins": 2.5}, TypeError),
+        (([O], REFERENCE_AREA), {"epsilon": 0}, ValueError),
+        (([O], REFERENCE_AREA), {"min_category_size": 2}, ValueError),
+        (([O], REFERENCE_AREA), {"histogram_range": "auto"}, ValueError),
+        (([O], REFERENCE_AREA), {"orientation": "polar"}, ValueError),
+    ],
+)
+def test_bad_input(args, kwargs, error):
+    with pytest.raises(error):
+        categorize(*args, **kwargs)
+
+
+def test_one_element():
+    result = categorize([O], REFERENCE_AREA)
+    assert result.labels.tolist() == [0]
+    assert result.n_categories == 1
+    assert result.small_categories == result.categories
+
+
+# --------------------------------------------------------------------------- adjusted Rand index
+
+
+def test_ari_identical_partitions_up_to_renaming():
+    a = np.array([0, 0, 1, 1, 2, 2, 2])
+    assert adjusted_rand_index(a, a) == 1.0
+    assert adjusted_rand_index(a, np.array(["c", "c", "a", "a", "b", "b", "b"])) == 1.0
+
+
+def test_ari_hand_computed():
+    # Contingency [[2, 1, 0], [0, 1, 2]]: sum C(n_ij, 2) = 2, rows 3 + 3 = 6, columns 1 + 1 + 1 = 3,
+    # C(6, 2) = 15, E = 6 * 3 / 15 = 1.2, max = 4.5: ARI = 0.8 / 3.3 = 8 / 33.
+    assert adjusted_rand_index([0, 0, 0, 1, 1, 1], [0, 0, 1, 1, 2, 2]) == pytest.approx(8 / 33, abs=1e-15)
+    # Hubert and Arabie's index is symmetric; scikit-learn's documented examples.
+    assert adjusted_rand_index([0, 0, 1, 2], [0, 0, 1, 1]) == pytest.approx(4 / 7)
+    assert adjusted_rand_index([0, 0, 1, 1], [0, 1, 0, 1]) == pytest.approx(-0.5)
+
+
+def test_ari_independent_partitions_near_zero():
+    rng = np.random.default_rng(0)
+    values = [adjusted_rand_index(rng.integers(0, 4, 3000), rng.integers(0, 3, 3000)) for _ in range(5)]
+    assert abs(np.mean(values)) < 0.003
+
+
+def test_ari_trivial_partitions():
+    assert adjusted_rand_index([1, 1, 1], [2, 2, 2]) == 1.0
+    assert adjusted_rand_index([0, 1, 2], [5, 6, 7]) == 1.0
+    assert adjusted_rand_index([0], [0]) == 1.0
+    assert adjusted_rand_index([0, 0, 0, 0], [0, 1, 2, 3]) == 0.0
+
+
+@pytest.mark.parametrize("a, b", [([], []), ([0, 1], [0]), ([[0, 1]], [[0, 1]])])
+def test_ari_bad_input(a, b):
+    with pytest.raises(ValueError):
+        adjusted_rand_index(a, b)
