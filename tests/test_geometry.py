@@ -344,3 +344,19 @@ def test_resample_rejects_zero_length(ring):
 def test_resample_rejects_bad_rings(ring):
     with pytest.raises(ValueError, match="ring"):
         resample_closed_curve(ring, 5)
+
+
+def test_as_elements_accepts_sequences_and_names_the_bad_item():
+    from paperlib.geometry import as_elements
+
+    element = Element([Stroke([[0, 0], [1, 0]])])
+    assert as_elements((element, element)) == [element, element]
+    assert as_elements(iter([element])) == [element]
+    with pytest.raises(TypeError, match="wrap it in a list"):
+        as_elements(element)
+    with pytest.raises(TypeError, match=r"drawing\[1\] is a str"):
+        as_elements([element, "x"], name="drawing")
+    with pytest.raises(TypeError, match="got int"):
+        as_elements(3)
+    with pytest.raises(ValueError, match="at least 2 elements, got 1"):
+        as_elements([element], min_count=2)

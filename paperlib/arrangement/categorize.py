@@ -101,7 +101,7 @@ import numpy as np
 import pandas as pd
 
 from paperlib.acontrario import HistogramModes, histogram_modes
-from paperlib.geometry import Element
+from paperlib.geometry import as_elements
 
 from .features import element_features
 from .robpca import ExactFitError, RobustPCA, robust_pca
@@ -362,12 +362,7 @@ def categorize(
     ----------
     .. [1] Hurtut et al. 2009, section 2.2 ("Categorization Algorithm") and figure 3.
     """
-    if isinstance(elements, Element):
-        raise TypeError("elements must be a sequence of Element, got a single Element")
-    try:
-        elements = list(elements)
-    except TypeError:
-        raise TypeError(f"elements must be a sequence of Element, got {type(elements).__name__}") from None
+    elements = as_elements(elements)
     if not elements:
         raise ValueError("categorize needs at least one element, got none")
     n_bins = _checked_bins(bins)

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from paperlib.geometry import Element, Stroke, oriented_bounding_boxes, write_svg
+from paperlib.geometry import Element, Stroke, as_elements, oriented_bounding_boxes, write_svg
 from paperlib.pointprocess import (
     MultiStraussHard,
     PointPattern,
@@ -64,19 +64,6 @@ _PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#
 
 
 # ---------------------------------------------------------------------------- positions
-
-
-def _check_elements(elements, name: str = "elements") -> list[Element]:
-    if isinstance(elements, Element):
-        raise TypeError(f"{name} must be a sequence of Element, got one Element: wrap it in a list")
-    try:
-        elements = list(elements)
-    except TypeError:
-        raise TypeError(f"{name} must be a sequence of Element, got {type(elements).__name__}") from None
-    for i, element in enumerate(elements):
-        if not isinstance(element, Element):
-            raise TypeError(f"{name}[{i}] is a {type(element).__name__}, expected paperlib.geometry.Element")
-    return elements
 
 
 def element_positions(elements) -> np.ndarray:
@@ -103,7 +90,7 @@ def element_positions(elements) -> np.ndarray:
     ----------
     Hurtut et al. (2009), sections 2.1 (fitted bounding box) and 3.1 (locations x_i).
     """
-    elements = _check_elements(elements)
+    elements = as_elements(elements)
     if not elements:
         raise ValueError("element_positions needs at least one element")
     return np.array(oriented_bounding_boxes(elements).centers, dtype=np.float64).reshape(-1, 2)
@@ -228,7 +215,7 @@ def fit(elements, labels, window, *, categories=None, **fit_options) -> Arrangem
     ----------
     Hurtut et al. (2009), sections 3.1 and 3.2 (3.2.1-3.2.3, eqs. 2-3).
     """
-    elements = _check_elements(elements)
+    elements = as_elements(elements)
     window = _check_window(window, "window")
     if not elements:
         raise ValueError("fit needs a non-empty reference arrangement (no elements given)")

@@ -6,7 +6,7 @@ This floor imports no other part of paperlib; every method builds on it.
 from .boxes import OrientedBox, OrientedBoxes, oriented_bounding_box, oriented_bounding_boxes
 from .curves import drop_repeated_vertices, oriented_ccw, resample_closed_curve, ring_centroid, signed_area
 from .hausdorff import directed_hausdorff, directed_hausdorff_boxes, hausdorff, hausdorff_boxes
-from .strokes import Element, StackedStrokes, Stroke, as_points, stack_strokes
+from .strokes import Element, StackedStrokes, Stroke, as_elements, as_points, stack_strokes
 from .svg import read_svg, svg_string, write_svg
 
 __all__ = [
@@ -15,6 +15,7 @@ __all__ = [
     "OrientedBoxes",
     "StackedStrokes",
     "Stroke",
+    "as_elements",
     "as_points",
     "directed_hausdorff",
     "directed_hausdorff_boxes",

@@ -17,7 +17,7 @@ from functools import cached_property
 
 import numpy as np
 
-__all__ = ["Element", "StackedStrokes", "Stroke", "as_points", "stack_strokes"]
+__all__ = ["Element", "StackedStrokes", "Stroke", "as_elements", "as_points", "stack_strokes"]
 
 
 def as_points(points, *, name: str = "points", min_points: int = 1) -> np.ndarray:
@@ -150,6 +150,35 @@ class Element:
         return Element(tuple(s.transformed(matrix, offset) for s in self.strokes), self.name)
 
 
+def as_elements(elements, *, name: str = "elements", min_count: int = 0) -> list:
+    """Validate a sequence of :class:`Element` and return it as a list.
+
+    The one check behind every function that takes a drawing (SVG output, stacking,
+    categorization, synthesis), so that all of them refuse bad input alike.
+
+    Raises
+    ------
+    TypeError
+        If ``elements`` is a single Element or Stroke, is not iterable, or holds
+        something other than Elements (the message names the first offending item).
+    ValueError
+        If there are fewer than ``min_count`` elements.
+    """
+    if isinstance(elements, (Element, Stroke)):
+        raise TypeError(f"{name} must be a sequence of Element, got one {type(elements).__name__}: wrap it in a list")
+    try:
+        elements = list(elements)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of Element, got {type(elements).__name__}") from None
+    for index, element in enumerate(elements):
+        if not isinstance(element, Element):
+            raise TypeError(f"{name}[{index}] is a {type(element).__name__}, expected paperlib.geometry.Element")
+    if len(elements) < min_count:
+        plural = "" if min_count == 1 else "s"
+        raise ValueError(f"{name} needs at least {min_count} element{plural}, got {len(elements)}")
+    return elements
+
+
 # --------------------------------------------------------------------------- many elements as flat arrays
 
 
@@ -218,15 +247,9 @@ def stack_strokes(elements) -> StackedStrokes:
     ValueError
         If there are no elements.
     """
-    if isinstance(elements, Element):
-        raise TypeError("expected a sequence of Element, got a single Element (wrap it in a list)")
-    elements = list(elements)
-    if not elements:
-        raise ValueError("expected at least one element, got none")
+    elements = as_elements(elements, min_count=1)
     strokes, stroke_element = [], []
     for index, element in enumerate(elements):
-        if not isinstance(element, Element):
-            raise TypeError(f"item {index} is a {type(element).__name__}, expected Element")
         strokes.extend(element.strokes)
         stroke_element.extend([index] * len(element.strokes))
     counts = np.array([len(stroke) for stroke in strokes])

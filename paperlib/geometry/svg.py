@@ -93,7 +93,7 @@ import numpy as np
 import svgelements
 
 from .._atomic import atomic_path
-from .strokes import Element, Stroke
+from .strokes import Element, Stroke, as_elements
 
 __all__ = ["DEFAULT_TOLERANCE", "read_svg", "svg_string", "write_svg"]
 
@@ -506,7 +506,7 @@ def svg_string(
     .. [1] W3C, "Scalable Vector Graphics (SVG) 1.1 (Second Edition)", 2011, sections
        5.2 (``g``), 7.7 (``viewBox``), 9.6 (``polyline``).
     """
-    elements = _check_elements(elements)
+    elements = as_elements(elements)
     decimals = _check_decimals(decimals)
     box = _check_viewbox(viewbox) if viewbox is not None else _drawing_bounds(elements)
     x, y, box_width, box_height = box
@@ -571,19 +571,6 @@ def write_svg(elements, path, **options) -> Path:
     with atomic_path(path) as temporary:
         temporary.write_text(text, encoding="utf-8")
     return path
-
-
-def _check_elements(elements) -> list[Element]:
-    if isinstance(elements, (Element, Stroke)):
-        raise TypeError(f"expected a sequence of Element, got one {type(elements).__name__}: wrap it in a list")
-    try:
-        elements = list(elements)
-    except TypeError:
-        raise TypeError(f"expected a sequence of Element, got {type(elements).__name__}") from None
-    for i, element in enumerate(elements):
-        if not isinstance(element, Element):
-            raise TypeError(f"elements[{i}] is a {type(element).__name__}, expected Element")
-    return elements
 
 
 def _check_decimals(decimals) -> int | None:
