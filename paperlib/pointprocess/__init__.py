@@ -18,6 +18,7 @@ from .fit import (
     PPMFit,
     RadiusSelection,
     StraussHardcoreFit,
+    csr_L_sd,
     fine_nd,
     fit_strauss_hardcore,
     hardcore_distances,
@@ -25,17 +26,17 @@ from .fit import (
     ppm,
     select_radius,
 )
-from .models import MultiStraussHard, Poisson, Strauss, StraussHard, interaction_counts, interaction_pairs
+from .models import MultiStraussHard, PairDistance, Poisson, Strauss, StraussHard, interaction_counts, interaction_pairs
 from .pattern import PointPattern
 from .processes import rMatClust, rpoispp
 from .quadrature import QuadratureScheme, default_nd, quadscheme
-from .simulate import rmh
+from .simulate import intensity_map_values, rmh
 from .summary import Kcross, Kest, Lcross, Lest, pcf
 from .window import Window
 
 __all__ = [
-    "Kcross", "Kest", "Lcross", "Lest", "MultiStraussHard", "PPMFit", "PointPattern", "Poisson", "QuadratureScheme",
-    "RadiusSelection", "Strauss", "StraussHard", "StraussHardcoreFit", "Window", "default_nd", "envelope", "fine_nd",
-    "fit_strauss_hardcore", "hardcore_distances", "interaction_counts", "interaction_pairs", "interaction_radii",
+    "Kcross", "Kest", "Lcross", "Lest", "MultiStraussHard", "PPMFit", "PairDistance", "PointPattern", "Poisson", "QuadratureScheme",
+    "RadiusSelection", "Strauss", "StraussHard", "StraussHardcoreFit", "Window", "csr_L_sd", "default_nd", "envelope", "fine_nd",
+    "fit_strauss_hardcore", "hardcore_distances", "intensity_map_values", "interaction_counts", "interaction_pairs", "interaction_radii",
     "pcf", "ppm", "quadscheme", "rMatClust", "rmh", "rpoispp", "select_radius",
 ]

@@ -89,6 +89,7 @@ __all__ = [
     "PPMFit",
     "RadiusSelection",
     "StraussHardcoreFit",
+    "csr_L_sd",
     "fit_strauss_hardcore",
     "fine_nd",
     "hardcore_distances",
@@ -145,12 +146,16 @@ def _interaction(pattern: PointPattern, r, hc, closed: bool) -> MultiStraussHard
     return MultiStraussHard(np.ones(pattern.n_types), 1.0, r, hc, pattern.categories, closed)
 
 
-def _check_data_respect_hardcore(pattern: PointPattern, interaction: MultiStraussHard) -> None:
+def _check_data_respect_hardcore(pattern: PointPattern, interaction: MultiStraussHard, pair_distance=None) -> None:
     """Every data point must be legal: a hard core larger than a data distance has zero likelihood."""
     _, forbidden = interaction_counts(interaction, pattern.points, pattern.marks, pattern.points, pattern.marks,
-                                      exclude=np.arange(pattern.n))
+                                      exclude=np.arange(pattern.n), pair_distance=pair_distance)
     if not forbidden.any():
         return
+    if pair_distance is not None:
+        point = int(np.argmax(forbidden))
+        raise ValueError(f"data point {point} lies within the hard core of another under pair_distance: "
+                         "the data would have zero pseudolikelihood (use smaller hard cores)")
     minimum = hardcore_distances(pattern, "minimum")
     hc = interaction.hc
     violated = minimum <= hc if interaction.closed else minimum < hc
@@ -295,7 +300,7 @@ def select_radius(r, L, hardcore: float, rebound_height: float) -> tuple[float, 
     return float(r[np.argmin(L)]), "global minimum (no rebound)"
 
 
-def _L_noise_sd(area: float, n_a: int, n_b: int, same_type: bool) -> float:
+def csr_L_sd(area: float, n_a: int, n_b: int, same_type: bool) -> float:
     """Standard deviation of an estimated L(r) under CSR, independent of r.
 
     The pair count within r is about Poisson: for one type, ordered pairs number twice a
@@ -366,7 +371,7 @@ def interaction_radii(pattern: PointPattern, hardcore, *, correction: str = "iso
     names = pattern.categories
     for a, b in _pairs(m):
         curve = _centered_L(pattern, a, b, correction, rmax)
-        noise = _L_noise_sd(pattern.window.area, pattern.counts[a], pattern.counts[b], a == b)
+        noise = csr_L_sd(pattern.window.area, pattern.counts[a], pattern.counts[b], a == b)
         r_star, rule = select_radius(curve["r"], curve["L"], hardcore[a, b], rebound * noise)
         radii[a, b] = radii[b, a] = r_star
         curves[(names[a], names[b])] = curve
@@ -521,7 +526,8 @@ def _pair_columns(m: int) -> np.ndarray:
     return index
 
 
-def _model_matrix(interaction: MultiStraussHard, quadrature: QuadratureScheme, pattern: PointPattern):
+def _model_matrix(interaction: MultiStraussHard, quadrature: QuadratureScheme, pattern: PointPattern,
+                  pair_distance=None):
     """Sufficient statistics s(u_j, m_j; x) of every quadrature point, and hard-core violations.
 
     Columns: intercept, one indicator per category after the first, then the number of data
@@ -531,7 +537,7 @@ def _model_matrix(interaction: MultiStraussHard, quadrature: QuadratureScheme, p
     m, k = interaction.n_types, quadrature.n_points
     exclude = np.where(quadrature.is_data, np.arange(k), -1)
     counts, forbidden = interaction_counts(interaction, quadrature.points, quadrature.types, pattern.points,
-                                           pattern.marks, exclude)
+                                           pattern.marks, exclude, pair_distance)
     trend = (quadrature.types[:, None] == np.arange(m)).astype(np.float64)
     trend[:, 0] = 1.0  # intercept; the first category is the baseline of the contrasts
     statistics = np.zeros((k, len(_pairs(m))))
@@ -636,7 +642,7 @@ def _starting_point(design, weights, is_data, types, n_types):
 
 
 def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: str = "border",
-        quadrature=None) -> PPMFit:
+        quadrature=None, pair_distance=None) -> PPMFit:
     """Fit beta and gamma of a (multitype) Strauss hard-core model by maximum pseudolikelihood.
 
     spatstat's ``ppm(X ~ marks, MultiStraussHard(iradii = r, hradii = hc))`` (``ppm(X ~ 1,
@@ -662,6 +668,14 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
         hard-core estimates depend strongly on nd. ``"spatstat"``: spatstat's default scheme.
         An int: that nd with spatstat's tile rule. Or a scheme built by
         :func:`~paperlib.pointprocess.quadrature.quadscheme` for this pattern.
+    pair_distance : PairDistance, optional
+        Distances between objects carried by the points, used instead of the points'
+        distances: ``pair_distance.distance(i, j)`` for quadrature points ``i`` (the data
+        points come first, as in every scheme) and data points ``j``. This is how Hurtut's
+        section 4.3 extension (interactions on distances between bounding boxes) is fitted:
+        the caller gives each quadrature point an object (:mod:`paperlib.arrangement`).
+        Requires an explicit ``quadrature`` scheme, whose indices the callable knows. The
+        border correction then uses rbord = max r + ``pair_distance.padding``.
 
     Returns
     -------
@@ -682,11 +696,14 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
     pattern = _check_pattern(pattern)
     _check_choice(correction, CORRECTIONS, "correction")
     interaction = _interaction(pattern, r, hc, closed)
-    _check_data_respect_hardcore(pattern, interaction)
+    if pair_distance is not None and not isinstance(quadrature, QuadratureScheme):
+        raise ValueError("pair_distance needs an explicit quadrature scheme (its indices are the callable's i)")
+    _check_data_respect_hardcore(pattern, interaction, pair_distance)
     quadrature = _resolve_quadrature(quadrature, pattern, interaction)
 
-    design, forbidden = _model_matrix(interaction, quadrature, pattern)
-    rbord = interaction.reach if correction == "border" else 0.0
+    design, forbidden = _model_matrix(interaction, quadrature, pattern, pair_distance)
+    padding = 0.0 if pair_distance is None else pair_distance.padding
+    rbord = interaction.reach + padding if correction == "border" else 0.0
     fitted = ~forbidden
     if rbord > 0:
         fitted &= quadrature.window.boundary_distance(quadrature.points) >= rbord
@@ -702,7 +719,7 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
     maximum = _maximise_log_pl(X, w, is_data, start)
     vcov_hessian = _inverse_or_nan(maximum.information, "Fisher information")
     vcov = _sandwich_vcov(pattern, interaction, maximum.theta, design[: pattern.n][:, active], fitted[: pattern.n],
-                          active, n_trend)
+                          active, n_trend, pair_distance)
 
     active_names = [names[i] for i in active]
     return PPMFit(
@@ -728,13 +745,15 @@ def _warn_degenerate(term_names, status) -> None:
 # ---------------------------------------------------------------------------- variance
 
 
-def _shell_pairs(interaction: MultiStraussHard, points: np.ndarray, marks: np.ndarray):
+def _shell_pairs(interaction: MultiStraussHard, points: np.ndarray, marks: np.ndarray, pair_distance=None):
     """Ordered data pairs (i, j), i != j, in the Strauss shell of their category pair."""
-    i, j, in_shell, _ = interaction_pairs(interaction, points, marks, points, marks, exclude=np.arange(len(points)))
+    i, j, in_shell, _ = interaction_pairs(interaction, points, marks, points, marks, exclude=np.arange(len(points)),
+                                          pair_distance=pair_distance)
     return i[in_shell], j[in_shell]
 
 
-def _sandwich_vcov(pattern, interaction, theta, data_design, fitted_data, active, n_trend) -> np.ndarray:
+def _sandwich_vcov(pattern, interaction, theta, data_design, fitted_data, active, n_trend,
+                   pair_distance=None) -> np.ndarray:
     """Coeurjolly and Rubak's (2013) variance A1^-1 (A1 + A2 + A3) A1^-1, as spatstat's vcov.
 
     A1 = sum over fitted data points of s_i s_i^T. For ordered pairs (i, j) of fitted data
@@ -743,7 +762,7 @@ def _sandwich_vcov(pattern, interaction, theta, data_design, fitted_data, active
     e_c e_c^T.
     """
     A1 = data_design[fitted_data].T @ data_design[fitted_data]
-    i, j = _shell_pairs(interaction, pattern.points, pattern.marks)
+    i, j = _shell_pairs(interaction, pattern.points, pattern.marks, pair_distance)
     term = _pair_columns(interaction.n_types)[pattern.marks[i], pattern.marks[j]]
     parameter = np.full(n_trend + len(_pairs(interaction.n_types)), -1)
     parameter[active] = np.arange(len(active))

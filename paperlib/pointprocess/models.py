@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-__all__ = ["MultiStraussHard", "Poisson", "Strauss", "StraussHard", "interaction_counts", "interaction_pairs"]
+__all__ = ["MultiStraussHard", "PairDistance", "Poisson", "Strauss", "StraussHard", "interaction_counts",
+           "interaction_pairs"]
 
 
 def _square(values, m: int, name: str, *, positive: bool = False) -> np.ndarray:
@@ -140,7 +141,7 @@ class MultiStraussHard:
         )
 
 
-def interaction_pairs(model, locations, types, pattern_points, pattern_marks, exclude=None):
+def interaction_pairs(model, locations, types, pattern_points, pattern_marks, exclude=None, pair_distance=None):
     """Pairs (location i, pattern point j) closer than the model's reach, classified.
 
     The one place where the Strauss shell and hard-core rules (and the distances, taken
@@ -155,6 +156,9 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     pattern_marks : array_like of int, shape (n,)
     exclude : array_like of int, shape (k,), optional
         Pattern index to leave out for each location (-1: none).
+    pair_distance : PairDistance, optional
+        Distances between the objects at the points (e.g. elements' bounding boxes, Hurtut
+        2009, section 4.3), used instead of the distances between the points.
 
     Returns
     -------
@@ -179,7 +183,9 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     if k == 0 or len(pattern_points) == 0:
         empty = np.zeros(0, dtype=np.int64)
         return empty, empty, np.zeros(0, bool), np.zeros(0, bool)
-    pairs = cKDTree(locations).sparse_distance_matrix(cKDTree(pattern_points), model.reach, output_type="ndarray")
+    padding = 0.0 if pair_distance is None else pair_distance.padding
+    pairs = cKDTree(locations).sparse_distance_matrix(cKDTree(pattern_points), model.reach + padding,
+                                                      output_type="ndarray")
     # the "ndarray" output keeps pairs at distance 0 (dummy copies of data points need them)
     i, j, d = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64), pairs["v"]
     if exclude is not None:
@@ -188,6 +194,8 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
             raise ValueError(f"exclude must have one entry per location ({k}), got shape {exclude.shape}")
         keep = exclude[i] != j
         i, j, d = i[keep], j[keep], d[keep]
+    if pair_distance is not None:
+        d = _object_distances(pair_distance, i, j, d)
     r, hc = model.r[types[i], pattern_marks[j]], model.hc[types[i], pattern_marks[j]]
     if model.closed:
         inside_core, in_shell = (d <= hc) & (hc > 0), (d > hc) & (d <= r)
@@ -196,7 +204,47 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     return i, j, in_shell, inside_core
 
 
-def interaction_counts(model, locations, types, pattern_points, pattern_marks, exclude=None):
+@dataclass(frozen=True)
+class PairDistance:
+    """A distance between the objects carried by points, for the interactions of a model.
+
+    Attributes
+    ----------
+    distance : callable
+        ``distance(i, j) -> d``: distances between the objects at locations ``i`` and at
+        pattern points ``j`` (integer arrays of one length; which locations and points is the
+        caller's convention, e.g. quadrature points and data points in :func:`ppm`).
+    padding : float
+        How much shorter than the distance between the two points an object distance can be
+        (>= 0): ``d >= |x_i - x_j| - padding`` for every pair. 0 for the Hausdorff distance
+        between centrally symmetric shapes centred on the points; the sum of the two largest
+        object radii for the gap between shapes. Pairs are searched among points closer than
+        the model's reach plus ``padding``.
+    """
+
+    distance: object
+    padding: float = 0.0
+
+    def __post_init__(self):
+        if not callable(self.distance):
+            raise TypeError("PairDistance.distance must be callable as distance(i, j)")
+        if not (np.isfinite(self.padding) and self.padding >= 0):
+            raise ValueError(f"padding must be finite and >= 0, got {self.padding!r}")
+
+
+def _object_distances(pair_distance: PairDistance, i, j, point_distance) -> np.ndarray:
+    """Distances between the objects of candidate pairs, checked against the padding."""
+    d = np.asarray(pair_distance.distance(i, j), dtype=np.float64).reshape(-1)
+    if d.shape != point_distance.shape:
+        raise ValueError(f"pair_distance returned {d.shape[0]} distances for {point_distance.shape[0]} pairs")
+    slack = 1e-12 * np.maximum(point_distance, 1.0)
+    if (d < point_distance - pair_distance.padding - slack).any():
+        raise ValueError("pair_distance returned a distance shorter than the points' distance minus its padding: "
+                         "pairs beyond the searched range could interact and would be missed")
+    return d
+
+
+def interaction_counts(model, locations, types, pattern_points, pattern_marks, exclude=None, pair_distance=None):
     """Neighbour counts per type in the Strauss shell, and hard-core violations.
 
     Parameters are those of :func:`interaction_pairs`.
@@ -208,7 +256,8 @@ def interaction_counts(model, locations, types, pattern_points, pattern_marks, e
     forbidden : ndarray of bool, shape (k,)
         Whether some pattern point lies within the hard core of location i.
     """
-    i, j, in_shell, inside_core = interaction_pairs(model, locations, types, pattern_points, pattern_marks, exclude)
+    i, j, in_shell, inside_core = interaction_pairs(model, locations, types, pattern_points, pattern_marks, exclude,
+                                                    pair_distance)
     k = len(np.asarray(locations).reshape(-1, 2))
     counts = np.zeros((k, model.n_types), dtype=np.int64)
     forbidden = np.zeros(k, dtype=bool)

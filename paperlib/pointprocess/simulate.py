@@ -41,7 +41,7 @@ from .models import MultiStraussHard
 from .pattern import PointPattern
 from .window import Window
 
-__all__ = ["rmh"]
+__all__ = ["intensity_map_values", "rmh"]
 
 _CHUNK_STEPS = 1 << 15  # steps per kernel call: ~2 MB of pre-drawn randomness
 _MAX_CELLS = 1 << 20
@@ -323,6 +323,31 @@ def _checked_intensity_map(intensity_map, window: Window) -> _IntensityMap | Non
     if not (image > 0).any():
         raise ValueError("intensity_map is zero everywhere: no point could ever be born")
     return _IntensityMap(image, window.xrange, window.yrange)
+
+
+def intensity_map_values(intensity_map, window: Window, points) -> np.ndarray:
+    """The values of an rmh ``intensity_map`` at points (the pixel of the frame holding each).
+
+    Parameters
+    ----------
+    intensity_map : array_like, shape (rows, columns)
+        Non-negative factor of beta over the window's frame, row 0 at the bottom, as for
+        :func:`rmh`.
+    window : Window
+    points : array_like, shape (k, 2)
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        Points outside the frame take the value of the nearest edge pixel.
+
+    Raises
+    ------
+    ValueError
+        For a map that :func:`rmh` would refuse (not 2-D, negative, non-finite, all zero).
+    """
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    return _checked_intensity_map(intensity_map, window).at(points[:, 0], points[:, 1])
 
 
 def _grid(window: Window, reach: float, periodic: bool, expected_points: float) -> Grid:
