@@ -7,7 +7,9 @@ Built on :mod:`paperlib.geometry`, :mod:`paperlib.acontrario` and :mod:`paperlib
   first robust principal component (:func:`robust_pca`, ROBPCA) of the other features;
 - :func:`fit` and :func:`synthesize`: the multitype Strauss hard-core model of section 3 fitted
   on element positions, simulated by Metropolis-Hastings in any window (with a density brush),
-  reference elements pasted per category (section 3.3); :func:`render` and ``Arrangement.to_svg``.
+  reference elements pasted per category (section 3.3); :func:`render` and ``Arrangement.to_svg``;
+- ``fit(..., interaction="box_hausdorff" | "box_gap")``: section 4.3's extension, interactions on
+  distances between the elements' bounding boxes (:mod:`.box_interaction`).
 """
 
 from .categorize import (
@@ -34,13 +36,14 @@ from .features import (
     normalized_elongation,
     normalized_orientation,
 )
+from .box_interaction import BOX_DISTANCES, box_distance_matrix
 from .robpca import DistanceCutoffs, ExactFitError, RobustPCA, robust_pca, subset_size
-from .synthesis import Arrangement, ArrangementModel, element_positions, fit, render, synthesize
+from .synthesis import INTERACTIONS, Arrangement, ArrangementModel, element_positions, fit, render, synthesize
 
 __all__ = [
-    "AREA_FRACTION", "Arrangement", "ArrangementModel", "AreaCategory", "COUNT_SCALE", "Categorization",
+    "AREA_FRACTION", "Arrangement", "BOX_DISTANCES", "INTERACTIONS", "ArrangementModel", "AreaCategory", "COUNT_SCALE", "Categorization",
     "DEFAULT_BINS", "DistanceCutoffs", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
-    "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "categorize", "crossing_points",
+    "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "box_distance_matrix", "categorize", "crossing_points",
     "element_features", "element_positions", "extremity_points", "fit", "normalized_area", "normalized_count",
     "normalized_elongation", "normalized_orientation", "render", "robust_pca", "subset_size", "synthesize",
     "unwrapped_orientation",

@@ -56,9 +56,12 @@ from paperlib.pointprocess import (
     rmh,
 )
 
-__all__ = ["Arrangement", "ArrangementModel", "element_positions", "fit", "render", "synthesize"]
+from .box_interaction import BoxInteractionFit, fit_box_model, simulate_box_model
+
+__all__ = ["INTERACTIONS", "Arrangement", "ArrangementModel", "element_positions", "fit", "render", "synthesize"]
 
 MIN_ELEMENTS_PER_CATEGORY = 3  # Hurtut 2009, section 3.2
+INTERACTIONS = ("centre", "box_hausdorff", "box_gap")  # pair distance: positions, or boxes (section 4.3)
 _PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
             "#bcbd22", "#17becf")  # matplotlib's tab10
 
@@ -111,8 +114,9 @@ class ArrangementModel:
     Attributes
     ----------
     model : MultiStraussHard
-        The fitted model (Hurtut eq. 2), type names ``str(category)``.
-    fit : StraussHardcoreFit
+        The fitted model (Hurtut eq. 2), type names ``str(category)``. With the ``"box"``
+        interaction its h and r are distances between bounding boxes.
+    fit : StraussHardcoreFit or BoxInteractionFit
         The whole estimation (h, r, beta, gamma with standard errors, L curves).
     references : tuple of tuple of Element
         Per category (in the order of ``categories``), its exemplar elements translated so
@@ -124,14 +128,23 @@ class ArrangementModel:
         The exemplar window W_R.
     pattern : PointPattern
         The exemplar as a marked point pattern (positions, category marks).
+    interaction : {"centre", "box_hausdorff", "box_gap"}
+        The pair distance of the interactions: between element positions (sections 3.1-3.3),
+        or between the elements' oriented bounding boxes as placed (the extension of section
+        4.3, :mod:`paperlib.arrangement.box_interaction`): their Hausdorff distance (the
+        paper's proposal) or their gap (ours).
+    reference_corners : tuple of ndarray
+        Per category, the (N_m, 4, 2) bounding boxes of ``references`` (box interactions only).
     """
 
     model: MultiStraussHard
-    fit: StraussHardcoreFit
+    fit: StraussHardcoreFit | BoxInteractionFit
     references: tuple
     categories: tuple
     window: Window
     pattern: PointPattern
+    interaction: str = "centre"
+    reference_corners: tuple = ()
 
     @property
     def n_categories(self) -> int:
@@ -180,7 +193,7 @@ def _category_marks(labels, n: int, categories) -> tuple[np.ndarray, tuple]:
     return marks, categories
 
 
-def fit(elements, labels, window, *, categories=None, **fit_options) -> ArrangementModel:
+def fit(elements, labels, window, *, categories=None, interaction: str = "centre", **fit_options) -> ArrangementModel:
     """Fit the arrangement model of Hurtut 2009, section 3.2, to categorized elements.
 
     Parameters
@@ -194,9 +207,17 @@ def fit(elements, labels, window, *, categories=None, **fit_options) -> Arrangem
     categories : sequence, optional
         The categories and their order (default: the sorted distinct labels). Each must hold
         at least 3 elements.
+    interaction : {"centre", "box_hausdorff", "box_gap"}
+        ``"centre"`` (the paper's model): interactions on the distance between element
+        positions. ``"box_hausdorff"``: on the Hausdorff distance between the elements'
+        oriented bounding boxes, the remedy section 4.3 proposes for elongated elements;
+        ``"box_gap"``: on the distance between the boxes, 0 when they intersect (ours; see
+        :mod:`paperlib.arrangement.box_interaction` for why).
     **fit_options
-        Passed to :func:`paperlib.pointprocess.fit_strauss_hardcore` (``hardcore``, ``r``,
-        ``correction``, ``quadrature``, ``L_correction``, ``rmax``, ``rebound``).
+        ``"centre"``: passed to :func:`paperlib.pointprocess.fit_strauss_hardcore`
+        (``hardcore``, ``r``, ``correction``, ``quadrature``, ``L_correction``, ``rmax``,
+        ``rebound``). Box interactions: to :func:`~paperlib.arrangement.box_interaction.fit_box_model`
+        (``rmax``, ``rebound``, ``nd``).
 
     Returns
     -------
@@ -213,10 +234,12 @@ def fit(elements, labels, window, *, categories=None, **fit_options) -> Arrangem
 
     References
     ----------
-    Hurtut et al. (2009), sections 3.1 and 3.2 (3.2.1-3.2.3, eqs. 2-3).
+    Hurtut et al. (2009), sections 3.1 and 3.2 (3.2.1-3.2.3, eqs. 2-3), and 4.3.
     """
     elements = as_elements(elements)
     window = _check_window(window, "window")
+    if interaction not in INTERACTIONS:
+        raise ValueError(f"interaction must be one of {INTERACTIONS}, got {interaction!r}")
     if not elements:
         raise ValueError("fit needs a non-empty reference arrangement (no elements given)")
     marks, categories = _category_marks(labels, len(elements), categories)
@@ -228,12 +251,17 @@ def fit(elements, labels, window, *, categories=None, **fit_options) -> Arrangem
                          f"e.g. element {i} at {positions[i].tolist()}: give a window that holds every element's "
                          "bounding-box centre")
     pattern = PointPattern(positions, window, marks, tuple(str(c) for c in categories))
-    estimate = fit_strauss_hardcore(pattern, **fit_options)
-    references = tuple(
-        tuple(_translated(elements[i], -positions[i]) for i in np.flatnonzero(marks == m))
-        for m in range(len(categories))
-    )
-    return ArrangementModel(estimate.model, estimate, references, categories, window, pattern)
+    members = [np.flatnonzero(marks == m) for m in range(len(categories))]
+    references = tuple(tuple(_translated(elements[i], -positions[i]) for i in ids) for ids in members)
+    if interaction == "centre":
+        estimate = fit_strauss_hardcore(pattern, **fit_options)
+        return ArrangementModel(estimate.model, estimate, references, categories, window, pattern)
+    corners = oriented_bounding_boxes(elements).corners()
+    reference_corners = tuple(corners[ids] - positions[ids, None, :] for ids in members)
+    estimate = fit_box_model(pattern, corners, reference_corners, distance=interaction.removeprefix("box_"),
+                             **fit_options)
+    return ArrangementModel(estimate.model, estimate, references, categories, window, pattern, interaction,
+                            reference_corners)
 
 
 # ---------------------------------------------------------------------------- synthesis
@@ -394,7 +422,8 @@ def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_00
         20 n reaches equilibrium for the benchmark models).
     start : None, PointPattern, int or sequence of int
         The chain's initial state, as for :func:`rmh` (e.g. ``model.pattern`` when the
-        synthesis window contains the exemplar window: the paper's x_0 = x).
+        synthesis window contains the exemplar window: the paper's x_0 = x). Models with
+        box interactions always start from the empty arrangement.
     rng : None, int or numpy.random.Generator
         Randomness; the same seed gives the same arrangement bit for bit. Two independent
         streams are spawned from it: one for the chain, one for picking references.
@@ -428,11 +457,17 @@ def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_00
     intensity_map = _intensity_map(density, window)
     _check_room(model.model, window)
     chain_rng, paste_rng = np.random.default_rng(rng).spawn(2)
-    pattern = rmh(model.model, window, int(T), start=start, intensity_map=intensity_map, rng=chain_rng,
-                  progress=progress)
+    if model.interaction != "centre":
+        if start is not None:
+            raise ValueError("models with box interactions start from the empty arrangement: pass start=None")
+        pattern, picks = simulate_box_model(model.model, model.reference_corners, window, int(T),
+                                            distance=model.fit.distance, intensity_map=intensity_map, rng=chain_rng)
+    else:
+        pattern = rmh(model.model, window, int(T), start=start, intensity_map=intensity_map, rng=chain_rng,
+                      progress=progress)
+        n_refs = np.array([len(r) for r in model.references], dtype=np.int64)
+        picks = paste_rng.integers(0, n_refs[pattern.marks]) if pattern.n else np.empty(0, dtype=np.int64)
     marks = pattern.marks
-    n_refs = np.array([len(r) for r in model.references], dtype=np.int64)
-    picks = paste_rng.integers(0, n_refs[marks]) if len(marks) else np.empty(0, dtype=np.int64)
     elements = [_translated(model.references[m][k], point) for m, k, point in zip(marks, picks, pattern.points)]
     labels = np.empty(len(marks), dtype=object)
     labels[:] = [model.categories[m] for m in marks]

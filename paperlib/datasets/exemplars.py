@@ -17,6 +17,8 @@ generator                                 what it shows (paper figure)
 :func:`lattice_exemplar`                  a jittered rectangular lattice (Fig. 8, the
                                           Strauss model's limitation)
 :func:`hatching_exemplar`                 long, thin, roughly parallel strokes (Fig. 9 right)
+:func:`drawn_hatching_exemplar`           a hatching whose strokes never touch: placed one by
+                                          one, as drawn (Fig. 9 right, section 4.3)
 :func:`near_identical_exemplar`           small glyphs that differ slightly, one perceptual
                                           group (Fig. 9 left, over-categorization)
 :func:`amacrine_exemplar`                 spatstat's real ``amacrine`` pattern dressed with
@@ -94,6 +96,7 @@ __all__ = [
     "Exemplar",
     "amacrine_exemplar",
     "big_small_exemplar",
+    "drawn_hatching_exemplar",
     "hatching_exemplar",
     "lattice_exemplar",
     "near_identical_exemplar",
@@ -695,6 +698,99 @@ def hatching_exemplar(
     description = (f"hatching of {char!r} strokes of length {length:g} at {angle:g} +- {angle_jitter:g} degrees, "
                    f"midpoints from a Strauss hard-core process (gamma {gamma:g}), rmh T={T}")
     return _exemplar(glyphs, pattern, frame, truth, description, rotations)
+
+
+def drawn_hatching_exemplar(
+    window: Window | None = None,
+    *,
+    n: int = 80,
+    char: str = "l",
+    length: float = 0.15,
+    angle: float = 60.0,
+    angle_spread: float = 30.0,
+    gap: float = 0.01,
+    max_attempts: int = 20_000,
+    font: str = "futural",
+    rng=None,
+) -> Exemplar:
+    """A hatching whose strokes keep apart, as an artist draws one (Hurtut Fig. 9 right, 4.3).
+
+    Strokes are placed one at a time by random sequential adsorption: a candidate gets a
+    position uniform in the positions window and a direction uniform in ``angle +-
+    angle_spread`` degrees, and is kept only if its ink (the stroke polylines, pen width
+    ignored) stays at least ``gap`` from the ink of every stroke already kept. Neighbouring
+    strokes are therefore nearly parallel and close, and none cross: the interactions act
+    between the strokes, which their centres do not describe (Hurtut section 4.3). Not a
+    Gibbs process: the truth is the placement rule, ``truth["min_ink_gap"] >= gap``.
+
+    Parameters
+    ----------
+    window : Window, optional
+        Rectangular drawing frame; default the unit square.
+    n : int
+        Number of strokes wanted, >= 1.
+    char : str
+        The glyph to stretch (a single straight stroke ``'l'`` by default).
+    length : float
+        Glyph size (window units), > 0.
+    angle : float
+        Mean stroke direction, degrees counter-clockwise from the x axis.
+    angle_spread : float
+        Half-width of the uniform direction range, degrees, in [0, 90].
+    gap : float
+        Smallest ink distance between two strokes, > 0.
+    max_attempts : int
+        Candidates drawn at most; fewer than ``n`` strokes are placed (with a warning)
+        when the window fills up first.
+    font, rng
+        As for :func:`two_category_exemplar`.
+
+    Returns
+    -------
+    Exemplar
+        One category named ``char``; ``truth`` holds the rule's parameters, the drawn
+        ``angles`` (degrees, per element), ``attempts`` and the realised ``min_ink_gap``.
+    """
+    import warnings
+
+    import shapely
+
+    (char,) = _chars((char,), "char", count=1)
+    n = int(_number(n, "n", 1))
+    length, gap = positive_number(length, "length"), positive_number(gap, "gap")
+    angle, angle_spread = _number(angle, "angle"), _number(angle_spread, "angle_spread", 0.0, 90.0)
+    max_attempts = int(_number(max_attempts, "max_attempts", 1))
+    frame, rng = _frame(window), np.random.default_rng(rng)
+    glyph = _glyph(char, font, length)
+    inner = _shrunk(frame, _margin([glyph], rotated=True))
+    base = _principal_angle(glyph.element)
+    kept_lines, points, angles = [], [], []
+    attempts = 0
+    while len(points) < n and attempts < max_attempts:
+        attempts += 1
+        point = inner.uniform_points(1, rng)[0]
+        direction = angle + rng.uniform(-angle_spread, angle_spread)
+        (element,) = _place([glyph], point[None, :], np.zeros(1, np.int64), [direction - base])
+        line = shapely.MultiLineString([stroke.points for stroke in element.strokes])
+        if kept_lines and shapely.distance(line, kept_lines).min() < gap:
+            continue
+        kept_lines.append(line)
+        points.append(point)
+        angles.append(direction)
+    if len(points) < n:
+        warnings.warn(f"drawn_hatching_exemplar placed {len(points)} of {n} strokes in {max_attempts} attempts: the "
+                      "window is full for this gap and length", UserWarning, stacklevel=2)
+    pattern = PointPattern(np.array(points), inner, np.zeros(len(points), np.int64), (char,))
+    gaps = shapely.distance(np.array(kept_lines)[:, None], np.array(kept_lines)[None, :])
+    np.fill_diagonal(gaps, np.inf)
+    truth = {"process": "random sequential adsorption of strokes", "n": n, "length": length, "angle": angle,
+             "angle_spread": angle_spread, "gap": gap, "attempts": attempts, "angles": angles,
+             "min_ink_gap": float(gaps.min()) if len(points) > 1 else float("inf"), "glyphs": {char: char},
+             "font": font, "margin": _margin([glyph], rotated=True).tolist(), "position": "bounding-box centre"}
+    description = (f"{len(points)} {char!r} strokes of length {length:g} at {angle:g} +- {angle_spread:g} degrees, "
+                   f"placed one by one at least {gap:g} apart (random sequential adsorption)")
+    rotations = np.array(angles) - base
+    return _exemplar([glyph], pattern, frame, truth, description, rotations)
 
 
 def near_identical_exemplar(
