@@ -1,0 +1,24 @@
+"""Interactive ipywidgets explorers, one per method, on top of the methods (DESIGN.md).
+
+- :func:`arrangement_explorer`: Hurtut 2009 (:mod:`paperlib.arrangement`): pick an exemplar or
+  load an SVG, see its appearance categories, tune T, the synthesis window and a density image,
+  re-synthesize.
+
+Each explorer keeps its update logic in plain methods, so tests and notebooks drive it without a
+browser, and renders its figure to PNG (works headless, with the Agg backend and in papermill).
+"""
+
+from .arrangement import (
+    DENSITY_KINDS,
+    EXEMPLARS,
+    ArrangementExplorer,
+    Drawing,
+    arrangement_explorer,
+    density_image,
+    scaled_window,
+)
+
+__all__ = [
+    "DENSITY_KINDS", "EXEMPLARS", "ArrangementExplorer", "Drawing", "arrangement_explorer", "density_image",
+    "scaled_window",
+]
