@@ -269,3 +269,12 @@ def test_bad_element_lists_are_rejected():
         oriented_bounding_boxes([hershey_glyph("x"), np.zeros((2, 2))])
     with pytest.raises(TypeError, match="wrap it in a list"):
         oriented_bounding_boxes(hershey_glyph("x"))
+
+
+def test_square_box_of_a_symmetric_glyph_keeps_its_pca_axis_despite_rounding():
+    from paperlib.datasets import hershey_glyph
+
+    plus = hershey_glyph("+")
+    offsets = np.random.default_rng(0).random((50, 2)) * 10  # rounding differs with the position
+    boxes = oriented_bounding_boxes([plus.transformed(np.eye(2), offset) for offset in offsets])
+    assert np.unique(boxes.angles).size == 1

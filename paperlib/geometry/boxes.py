@@ -59,6 +59,7 @@ __all__ = ["OrientedBox", "OrientedBoxes", "oriented_bounding_box", "oriented_bo
 
 #: Covariances whose anisotropy is below this fraction of their trace have no principal direction.
 _ISOTROPY_TOLERANCE = 1e-10
+_TIE_TOLERANCE = 1e-9  # relative difference of two extents below which they are equal
 #: Half lengths below this fraction of the larger one are rounding noise of a zero extent.
 _ZERO_EXTENT_TOLERANCE = 1e-12
 #: Corners of the unit box in the (major, minor) frame, counter-clockwise from (-, -).
@@ -267,8 +268,12 @@ def _fit_boxes(vertices, vertex_group, group_offsets, radii, mass, centroids, se
 
 
 def _boxes_with_major_first(centers, half_lengths, angles) -> OrientedBoxes:
-    """Swap the axes where the minor PCA axis has the larger extent; snap noise extents to 0."""
-    swap = half_lengths[:, 1] > half_lengths[:, 0]
+    """Swap the axes where the minor PCA axis has the larger extent; snap noise extents to 0.
+
+    Extents equal up to rounding (a square box, e.g. a symmetric '+') are a tie, not a swap:
+    otherwise rounding alone would turn identical elements by 0 or pi/2.
+    """
+    swap = half_lengths[:, 1] > half_lengths[:, 0] * (1.0 + _TIE_TOLERANCE)
     half_lengths = np.where(swap[:, None], half_lengths[:, ::-1], half_lengths)
     half_lengths[half_lengths < _ZERO_EXTENT_TOLERANCE * half_lengths[:, :1]] = 0.0
     angles = np.mod(angles + np.where(swap, np.pi / 2.0, 0.0), np.pi)
