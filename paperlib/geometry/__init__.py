@@ -1,4 +1,4 @@
-"""Shared vector geometry: strokes, elements, closed curves, oriented boxes, Hausdorff, SVG.
+"""Shared vector geometry: strokes, elements, closed curves, oriented boxes, Hausdorff, SVG, Lloyd.
 
 This floor imports no other part of paperlib; every method builds on it.
 """
@@ -8,6 +8,7 @@ from .curves import drop_repeated_vertices, oriented_ccw, resample_closed_curve,
 from .hausdorff import directed_hausdorff, directed_hausdorff_boxes, hausdorff, hausdorff_boxes
 from .strokes import Element, StackedStrokes, Stroke, as_elements, as_points, stack_strokes
 from .svg import read_svg, svg_string, write_svg
+from .voronoi import lloyd_relaxation
 
 __all__ = [
     "Element",
@@ -22,6 +23,7 @@ __all__ = [
     "drop_repeated_vertices",
     "hausdorff",
     "hausdorff_boxes",
+    "lloyd_relaxation",
     "oriented_bounding_box",
     "oriented_bounding_boxes",
     "oriented_ccw",
