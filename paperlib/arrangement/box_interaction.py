@@ -86,10 +86,10 @@ __all__ = ["BOX_DISTANCES", "BoxInteractionFit", "box_distance_matrix", "box_gap
            "fit_box_model", "simulate_box_model"]
 
 BOX_DISTANCES = ("hausdorff", "gap")  # code 0 and 1 in the numba kernels
-REBOUND = 3.0
+REBOUND = 3.0  # CSR standard deviations confirming a minimum of L, as interaction_radii
 # Quadrature grid side cap: fine_nd (spacing below h / 4) asks for 512^2 dummies when h is a small gap,
-# and each dummy carries a box; 128^2 keeps the fit about a second (spacing noted in the fit's table).
-MAX_ND = 128  # CSR standard deviations confirming a minimum of L, as interaction_radii
+# and each dummy carries a box; 128^2 keeps the fit under a second.
+MAX_ND = 128
 _CHUNK = 8192  # MCMC proposals drawn (in NumPy) per kernel call
 
 

@@ -114,8 +114,8 @@ class ArrangementModel:
     Attributes
     ----------
     model : MultiStraussHard
-        The fitted model (Hurtut eq. 2), type names ``str(category)``. With the ``"box"``
-        interaction its h and r are distances between bounding boxes.
+        The fitted model (Hurtut eq. 2), type names ``str(category)``. With box interactions
+        (``"box_hausdorff"``, ``"box_gap"``) its h and r are distances between bounding boxes.
     fit : StraussHardcoreFit or BoxInteractionFit
         The whole estimation (h, r, beta, gamma with standard errors, L curves).
     references : tuple of tuple of Element
