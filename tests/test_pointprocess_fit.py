@@ -402,3 +402,22 @@ def test_newton_stops_at_the_resolution_of_floating_point():
     result = fit_strauss_hardcore(amacrine)
     assert result.fit.iterations < 20
     assert 0 < result.gamma.loc["off", "on"] < 1
+
+
+def test_a_hard_core_beyond_rmax_gives_a_pure_hard_core_not_an_error():
+    # five widely spaced points of category b: their hard core exceeds spatstat's default rmax
+    rng = np.random.default_rng(0)
+    a = rng.uniform(0, 1, (40, 2))
+    b = np.array([[0.2, 0.2], [0.8, 0.2], [0.5, 0.5], [0.2, 0.8], [0.8, 0.8]])
+    pattern = PointPattern(np.vstack([a, b]), Window.rectangle(), np.r_[np.zeros(40, int), np.ones(5, int)],
+                           ("a", "b"))
+    h = hardcore_distances(pattern)
+    with pytest.warns(UserWarning, match="beyond the largest r examined"):
+        selection = interaction_radii(pattern, h)
+    assert selection.r[1, 1] == h[1, 1]
+    row = selection.table[(selection.table.a == "b") & (selection.table.b == "b")].iloc[0]
+    assert row.rule == "hard core only (h beyond rmax)"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fitted = fit_strauss_hardcore(pattern, correction="none")
+    assert fitted.model.hc[1, 1] == h[1, 1] and fitted.model.gamma[1, 1] == 1.0

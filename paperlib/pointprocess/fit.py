@@ -101,6 +101,7 @@ __all__ = [
 MIN_POINTS_PER_CATEGORY = 3  # Hurtut 2009, section 3.2: "less than three elements" is hazardous
 CORRECTIONS = ("border", "none")
 HARDCORE_METHODS = ("minimum", "spatstat")
+HARDCORE_ONLY_RULE = "hard core only (h beyond rmax)"
 L_COLUMNS = {"none": "un", "border": "border", "isotropic": "iso", "translate": "trans"}
 
 # our default quadrature (see fine_nd): grid spacing at most 1/DUMMIES_PER_SCALE of the
@@ -352,7 +353,9 @@ def interaction_radii(pattern: PointPattern, hardcore, *, correction: str = "iso
     Returns
     -------
     RadiusSelection
-        Warns when some pair has no confirmed local minimum (the fallback rule was used).
+        Warns when some pair has no confirmed local minimum (the fallback rule was used), and
+        when a pair's hard core lies beyond rmax (a category of a few widely spaced points):
+        then r = h, a pure hard core (rule ``"hard core only (h beyond rmax)"``).
 
     References
     ----------
@@ -372,13 +375,22 @@ def interaction_radii(pattern: PointPattern, hardcore, *, correction: str = "iso
     for a, b in _pairs(m):
         curve = _centered_L(pattern, a, b, correction, rmax)
         noise = csr_L_sd(pattern.window.area, pattern.counts[a], pattern.counts[b], a == b)
-        r_star, rule = select_radius(curve["r"], curve["L"], hardcore[a, b], rebound * noise)
+        if not (curve["r"] > hardcore[a, b]).any():
+            # a hard core beyond rmax (a few widely spaced elements): no L value to read, no shell
+            r_star, rule = float(hardcore[a, b]), HARDCORE_ONLY_RULE
+        else:
+            r_star, rule = select_radius(curve["r"], curve["L"], hardcore[a, b], rebound * noise)
         radii[a, b] = radii[b, a] = r_star
         curves[(names[a], names[b])] = curve
         rows.append({"a": names[a], "b": names[b], "h": hardcore[a, b], "r": r_star, "rule": rule,
                      "noise_sd": noise, "rebound_height": rebound * noise})
     table = pd.DataFrame(rows)
-    fallback = table[table["rule"] != "first local minimum"]
+    beyond = table[table["rule"] == HARDCORE_ONLY_RULE]
+    if len(beyond):
+        pairs = ", ".join(f"({row.a}, {row.b})" for row in beyond.itertuples())
+        warnings.warn(f"the hard core of {pairs} is beyond the largest r examined: r = h (a pure hard core, gamma "
+                      "not identifiable); pass a larger rmax to look for a Strauss shell", stacklevel=2)
+    fallback = table[~table["rule"].isin(["first local minimum", HARDCORE_ONLY_RULE])]
     if len(fallback):
         pairs = ", ".join(f"({row.a}, {row.b})" for row in fallback.itertuples())
         warnings.warn(f"no local minimum of the centered L function stands out from CSR noise for {pairs}: "
