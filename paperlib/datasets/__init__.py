@@ -13,6 +13,8 @@ licence and size:
   matplotlib (shapes with large-scale structure).
 - :mod:`.exemplars`: documented, seeded generators of element arrangements made of Hershey
   glyphs placed by point processes, with their ground truth (Hurtut 2009's exemplars).
+- :mod:`.stipple`: documented, seeded generators of synthetic hand-drawn-like stipple tone
+  textures and tone-map sheets (Kim 2009's inputs; no hand-drawn stipple data can be shipped).
 """
 
 from .coastlines import GshhsPolygon, coastlines, gshhs_polygons, gshhs_resolutions
@@ -31,6 +33,7 @@ from .exemplars import (
 from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey_glyphs
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
 from .outlines import glyph_outline, glyph_outlines, outline_names
+from .stipple import stipple_tone_sheet, stipple_tone_texture
 
 __all__ = [
     "DEFAULT_STROKE_WIDTH",
@@ -42,11 +45,11 @@ __all__ = [
     "country_english_names",
     "country_names",
     "country_outline",
+    "drawn_hatching_exemplar",
     "glyph_outline",
     "glyph_outlines",
     "grayscale_image",
     "grayscale_names",
-    "drawn_hatching_exemplar",
     "hatching_exemplar",
     "gshhs_polygons",
     "gshhs_resolutions",
@@ -59,5 +62,7 @@ __all__ = [
     "photograph",
     "photograph_names",
     "regularity_exemplar",
+    "stipple_tone_sheet",
+    "stipple_tone_texture",
     "two_category_exemplar",
 ]
