@@ -8,9 +8,14 @@ Done so far (issue 5 in progress):
 - :mod:`.glcm`: sections 3.3 and 3.4.1, bitonal GLCMs of horizontal, vertical and diagonal
   offsets, contrast / energy / correlation (eqs. 2-4, checked against scikit-image), the
   average co-occurrence error ACE (eq. 5), and numba kernels that update the co-occurrence
-  counts in O(offsets) per pixel flip for the synthesis of section 3.4.
+  counts in O(offsets) per pixel flip for the synthesis of section 3.4;
+- :mod:`.synthesis`: section 3.4, spin-flip minimisation of ACE under the geometric constraint
+  of 3.4.2 (:func:`synthesize_distribution`), with the stipple geometry of 3.2
+  (:func:`stipple_geometry`: S_avg, O_min, O_avg, O_max);
+- :mod:`.voronoi_stippling`: the baseline of the comparisons, Secord's (2002) weighted Voronoi
+  stippling (:func:`weighted_voronoi_stipples`, :func:`render_stipples`).
 
-Stipple extraction (3.2), synthesis (3.4), rendering (4) and the notebooks are to come.
+Stipple and mark extraction (3.2), rendering (4), the notebooks and the widget are to come.
 """
 
 from .glcm import (
@@ -27,10 +32,19 @@ from .glcm import (
     pair_totals,
     to_bitonal,
 )
+from .synthesis import StippleGeometry, SynthesisResult, stipple_geometry, synthesize_distribution
 from .tone_map import ToneMap, block_gray_levels, extract_tone_map, largest_rectangle, segment_blocks
+from .voronoi_stippling import (
+    VoronoiStipples,
+    render_stipples,
+    stipple_density,
+    weighted_centroids,
+    weighted_voronoi_stipples,
+)
 
 __all__ = [
-    "GLCMFeatures", "ToneMap", "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal",
+    "GLCMFeatures", "StippleGeometry", "SynthesisResult", "ToneMap", "VoronoiStipples", "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal",
     "cooccurrence_counts", "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features",
-    "largest_rectangle", "normalized_glcms", "paper_offsets", "pair_totals", "segment_blocks", "to_bitonal",
+    "largest_rectangle", "normalized_glcms", "paper_offsets", "pair_totals", "render_stipples", "segment_blocks", "stipple_density", "stipple_geometry",
+    "synthesize_distribution", "to_bitonal", "weighted_centroids", "weighted_voronoi_stipples",
 ]

@@ -467,26 +467,26 @@ def ace_change_kernel(texture, counts, y, x, offsets, target, totals):
     height, width = texture.shape
     old = 1 if texture[y, x] != 0 else 0
     new = 1 - old
-    delta = np.zeros((2, 2), dtype=np.int64)  # count changes of one offset, reset entry by entry
     change = 0.0
     for m in range(offsets.shape[0]):
-        delta[0, 0] = delta[0, 1] = delta[1, 0] = delta[1, 1] = 0
         dy, dx = offsets[m, 0], offsets[m, 1]
+        total = totals[m]
         py, px = y - dy, x - dx
+        first = -1  # the value before p along this offset, -1 outside the texture
         if 0 <= py < height and 0 <= px < width:
             first = 1 if texture[py, px] != 0 else 0
-            delta[first, old] -= 1
-            delta[first, new] += 1
         qy, qx = y + dy, x + dx
+        second = -1  # the value after p
         if 0 <= qy < height and 0 <= qx < width:
             second = 1 if texture[qy, qx] != 0 else 0
-            delta[old, second] -= 1
-            delta[new, second] += 1
         for i in range(2):
             for j in range(2):
-                if delta[i, j] != 0:
-                    before = counts[m, i, j] / totals[m]
-                    after = (counts[m, i, j] + delta[i, j]) / totals[m]
+                # entry (i, j) loses the pairs that read (i, j) before the flip and gains those after it
+                delta = ((first == i and new == j) - (first == i and old == j)
+                         + (new == i and second == j) - (old == i and second == j))
+                if delta != 0:
+                    before = counts[m, i, j] / total
+                    after = (counts[m, i, j] + delta) / total
                     change += abs(after - target[m, i, j]) - abs(before - target[m, i, j])
     return change / offsets.shape[0]
 
