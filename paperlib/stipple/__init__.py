@@ -15,9 +15,14 @@ Done so far (issue 5 in progress):
 - :mod:`.voronoi_stippling`: the baseline of the comparisons, Secord's (2002) weighted Voronoi
   stippling (:func:`weighted_voronoi_stipples`, :func:`render_stipples`).
 
-Stipple and mark extraction (3.2), rendering (4), the notebooks and the widget are to come.
+- :mod:`.extraction`: section 3.2, light / merged / dark levels, distribution textures (component
+  centres; constrained Lloyd inside merged blobs) and the mark library (:func:`extract_distribution`,
+  :func:`extract_marks`).
+
+Rendering (4), the notebooks and the widget are to come.
 """
 
+from .extraction import LEVELS, DistributionResult, Mark, classify_level, extract_distribution, extract_marks
 from .glcm import (
     GLCMFeatures,
     ace,
@@ -43,7 +48,7 @@ from .voronoi_stippling import (
 )
 
 __all__ = [
-    "GLCMFeatures", "StippleGeometry", "SynthesisResult", "ToneMap", "VoronoiStipples", "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal",
+    "LEVELS", "DistributionResult", "GLCMFeatures", "Mark", "classify_level", "extract_distribution", "extract_marks", "StippleGeometry", "SynthesisResult", "ToneMap", "VoronoiStipples", "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal",
     "cooccurrence_counts", "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features",
     "largest_rectangle", "normalized_glcms", "paper_offsets", "pair_totals", "render_stipples", "segment_blocks", "stipple_density", "stipple_geometry",
     "synthesize_distribution", "to_bitonal", "weighted_centroids", "weighted_voronoi_stipples",
