@@ -334,3 +334,23 @@ def test_ace_change_kernel_predicts_the_ace_of_the_flipped_texture_without_flipp
         current = ace(target, normalized_glcms(counts))
         flip_update(texture, counts, y, x, offsets)
         assert change == pytest.approx(ace(target, normalized_glcms(counts)) - current, abs=1e-12)
+
+
+def test_ace_change_kernel_is_exact_at_every_pixel_for_any_offsets_and_both_flip_directions():
+    # rectangular texture, offsets of every sign (some reach only part of the texture), every
+    # pixel including corners and edges, ink and paper pixels alike: the branch-free kernel
+    # must give the recomputed ACE change to rounding, far inside the 1e-12 acceptance margin
+    offsets = np.array([[0, 1], [1, 0], [2, -3], [-1, 4], [5, 5], [0, -6], [6, 0]])
+    texture = random_texture((7, 9), 0.4, 21)
+    target = normalized_glcms(cooccurrence_counts(random_texture((7, 9), 0.2, 22), offsets))
+    counts = cooccurrence_counts(texture, offsets)
+    totals = pair_totals(texture.shape, offsets).astype(np.float64)
+    current = ace(target, normalized_glcms(counts))
+    for y in range(texture.shape[0]):
+        for x in range(texture.shape[1]):
+            flipped = texture.copy()
+            flipped[y, x] = ~flipped[y, x]
+            expected = ace(target, normalized_glcms(cooccurrence_counts(flipped, offsets))) - current
+            assert ace_change_kernel(texture, counts, y, x, offsets, target, totals) == pytest.approx(
+                expected, abs=1e-15
+            )
