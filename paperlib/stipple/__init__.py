@@ -19,7 +19,11 @@ Done so far (issue 5 in progress):
   centres; constrained Lloyd inside merged blobs) and the mark library (:func:`extract_distribution`,
   :func:`extract_marks`).
 
-Rendering (4), the notebooks and the widget are to come.
+- :mod:`.rendering`: section 4, tone grays by pre-simulation, probabilistic tone selection
+  (Fig. 10), distribution images from randomly rotated tiles, black then white mark placement,
+  small-chunk removal (Fig. 11), all chained by :func:`render_stippling`.
+
+The notebooks, the widget and the benchmarks are to come.
 """
 
 from .extraction import LEVELS, DistributionResult, Mark, classify_level, extract_distribution, extract_marks
@@ -37,6 +41,17 @@ from .glcm import (
     pair_totals,
     to_bitonal,
 )
+from .rendering import (
+    ChunkRemoval,
+    StippleRendering,
+    distribution_image,
+    place_marks,
+    remove_small_chunks,
+    render_stippling,
+    render_tone,
+    select_tones,
+    tone_gray_levels,
+)
 from .synthesis import StippleGeometry, SynthesisResult, stipple_geometry, synthesize_distribution
 from .tone_map import ToneMap, block_gray_levels, extract_tone_map, largest_rectangle, segment_blocks
 from .voronoi_stippling import (
@@ -48,8 +63,12 @@ from .voronoi_stippling import (
 )
 
 __all__ = [
-    "LEVELS", "DistributionResult", "GLCMFeatures", "Mark", "classify_level", "extract_distribution", "extract_marks", "StippleGeometry", "SynthesisResult", "ToneMap", "VoronoiStipples", "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal",
-    "cooccurrence_counts", "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features",
-    "largest_rectangle", "normalized_glcms", "paper_offsets", "pair_totals", "render_stipples", "segment_blocks", "stipple_density", "stipple_geometry",
-    "synthesize_distribution", "to_bitonal", "weighted_centroids", "weighted_voronoi_stipples",
+    "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal", "ChunkRemoval", "classify_level",
+    "cooccurrence_counts", "distribution_image", "DistributionResult", "extract_distribution", "extract_marks",
+    "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features", "GLCMFeatures", "largest_rectangle",
+    "LEVELS", "Mark", "normalized_glcms", "pair_totals", "paper_offsets", "place_marks", "remove_small_chunks",
+    "render_stipples", "render_stippling", "render_tone", "segment_blocks", "select_tones", "stipple_density",
+    "stipple_geometry", "StippleGeometry", "StippleRendering", "SynthesisResult", "synthesize_distribution",
+    "to_bitonal", "tone_gray_levels", "ToneMap", "VoronoiStipples", "weighted_centroids",
+    "weighted_voronoi_stipples"
 ]
