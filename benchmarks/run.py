@@ -6,7 +6,11 @@ Usage::
 
 Each case is called once untimed (to warm numba caches and imports), then ``--repeat``
 times; the table shows the median wall seconds, the baseline's median at the same size
-(run in this same process) and their ratio (below 1: faster than the baseline).
+(run in this same process) and their ratio (below 1: faster than the baseline). One more
+untimed call runs under :mod:`tracemalloc` and gives the case's peak memory: the largest
+amount of Python and NumPy memory (NumPy reports its buffers to tracemalloc) held at once
+during the call, above what was held before it. Memory that numba kernels allocate
+internally is not seen; ours allocate nothing inside their loops.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ import platform
 import statistics
 import sys
 import time
+import tracemalloc
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -32,8 +37,7 @@ def load_benchmark_modules() -> None:
         importlib.import_module(path.stem)
 
 
-def median_seconds(make_case, size, repeat: int) -> float:
-    run = make_case(size)
+def median_seconds(run, repeat: int) -> float:
     run()  # warm-up: imports, numba compilation, file caches
     times = []
     for _ in range(repeat):
@@ -43,17 +47,33 @@ def median_seconds(make_case, size, repeat: int) -> float:
     return statistics.median(times)
 
 
+def peak_mebibytes(run) -> float:
+    """Peak traced memory (MiB) of one call of ``run`` above what was allocated before it."""
+    tracemalloc.start()
+    try:
+        before, _ = tracemalloc.get_traced_memory()
+        tracemalloc.reset_peak()
+        run()
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    return (peak - before) / 2**20
+
+
 def measure(selected, repeat: int, quick: bool) -> list[dict]:
     rows = []
     for bench in selected:
         for size in bench.sizes[:1] if quick else bench.sizes:
-            seconds = median_seconds(bench.case, size, repeat)
-            baseline = median_seconds(bench.baseline, size, repeat) if bench.baseline else None
+            run = bench.case(size)
+            seconds = median_seconds(run, repeat)
+            peak = peak_mebibytes(run)
+            baseline = median_seconds(bench.baseline(size), repeat) if bench.baseline else None
             rows.append(
                 {
                     "name": bench.name,
                     "size": size,
                     "seconds": seconds,
+                    "peak_mib": peak,
                     "baseline": bench.baseline_name or None,
                     "baseline_seconds": baseline,
                     "ratio": seconds / baseline if baseline else None,
@@ -64,13 +84,14 @@ def measure(selected, repeat: int, quick: bool) -> list[dict]:
 
 
 def format_table(rows) -> str:
-    header = f"{'name':<36} {'size':>8} {'seconds':>10} {'baseline':<28} {'base s':>10} {'ratio':>7}"
+    header = f"{'name':<36} {'size':>8} {'seconds':>10} {'peak MiB':>9} {'baseline':<28} {'base s':>10} {'ratio':>7}"
     lines = [header, "-" * len(header)]
     for row in rows:
         base = f"{row['baseline_seconds']:.4g}" if row["baseline_seconds"] is not None else "-"
         ratio = f"{row['ratio']:.3g}" if row["ratio"] is not None else "-"
         lines.append(
-            f"{row['name']:<36} {row['size']:>8} {row['seconds']:>10.4g} {row['baseline'] or '-':<28} {base:>10} {ratio:>7}"
+            f"{row['name']:<36} {row['size']:>8} {row['seconds']:>10.4g} {row['peak_mib']:>9.1f} "
+            f"{row['baseline'] or '-':<28} {base:>10} {ratio:>7}"
         )
     return "\n".join(lines)
 

@@ -41,6 +41,7 @@ from .glcm import (
     pair_totals,
     to_bitonal,
 )
+from .library import StippleLibrary, learn_stipple_library
 from .rendering import (
     ChunkRemoval,
     StippleRendering,
@@ -66,9 +67,9 @@ __all__ = [
     "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal", "ChunkRemoval", "classify_level",
     "cooccurrence_counts", "distribution_image", "DistributionResult", "extract_distribution", "extract_marks",
     "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features", "GLCMFeatures", "largest_rectangle",
-    "LEVELS", "Mark", "normalized_glcms", "pair_totals", "paper_offsets", "place_marks", "remove_small_chunks",
+    "LEVELS", "learn_stipple_library", "Mark", "normalized_glcms", "pair_totals", "paper_offsets", "place_marks", "remove_small_chunks",
     "render_stipples", "render_stippling", "render_tone", "segment_blocks", "select_tones", "stipple_density",
-    "stipple_geometry", "StippleGeometry", "StippleRendering", "SynthesisResult", "synthesize_distribution",
+    "stipple_geometry", "StippleGeometry", "StippleLibrary", "StippleRendering", "SynthesisResult", "synthesize_distribution",
     "to_bitonal", "tone_gray_levels", "ToneMap", "VoronoiStipples", "weighted_centroids",
     "weighted_voronoi_stipples"
 ]

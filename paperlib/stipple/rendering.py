@@ -42,6 +42,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 from skimage.morphology import remove_small_holes, remove_small_objects
 
@@ -59,6 +60,10 @@ __all__ = [
     "select_tones",
     "tone_gray_levels",
 ]
+
+
+# Pixels per band of uniforms drawn at once in select_tones (1 Mi: 8 MiB of float64).
+SELECTION_BAND_PIXELS = 1 << 20
 
 
 # ============================================================================ results
@@ -191,21 +196,34 @@ def _checked_tone_index(tone_index, n_tones: int) -> np.ndarray:
 # ============================================================================ mark stamping
 
 
-def _stamp(canvas: np.ndarray, rows, cols, marks, value: bool) -> None:
-    """Stamp ``marks[k]`` centred on ``(rows[k], cols[k])`` with ``value``, clipped to the canvas."""
+@numba.njit(cache=True)
+def _stamp_kernel(canvas, rows, cols, chosen, masks, offsets, value):
+    """Stamp ``masks[chosen[k]]`` centred on ``(rows[k], cols[k])`` with ``value``, clipped."""
     height, width = canvas.shape
-    for row, col, mark in zip(rows, cols, marks):
-        top, left = row - mark.offset[0], col - mark.offset[1]
-        mark_height, mark_width = mark.mask.shape
-        r0, c0 = max(top, 0), max(left, 0)
-        r1, c1 = min(top + mark_height, height), min(left + mark_width, width)
-        if r0 < r1 and c0 < c1:
-            canvas[r0:r1, c0:c1][mark.mask[r0 - top : r1 - top, c0 - left : c1 - left]] = value
+    for k in range(rows.shape[0]):
+        mark = chosen[k]
+        top, left = rows[k] - offsets[mark, 0], cols[k] - offsets[mark, 1]
+        for i in range(max(0, -top), min(masks.shape[1], height - top)):
+            for j in range(max(0, -left), min(masks.shape[2], width - left)):
+                if masks[mark, i, j]:
+                    canvas[top + i, left + j] = value
 
 
-def _random_marks(library: list[Mark], count: int, rng: np.random.Generator) -> list[Mark]:
-    """``count`` marks drawn uniformly, with replacement, from ``library`` (4.2)."""
-    return [library[k] for k in rng.integers(0, len(library), size=count)]
+def _packed(library: list[Mark]) -> tuple[np.ndarray, np.ndarray]:
+    """The library's masks zero-padded into one (n, h, w) array, and their (row, col) offsets."""
+    height = max(mark.mask.shape[0] for mark in library)
+    width = max(mark.mask.shape[1] for mark in library)
+    masks = np.zeros((len(library), height, width), dtype=np.bool_)
+    for index, mark in enumerate(library):
+        masks[index, : mark.mask.shape[0], : mark.mask.shape[1]] = mark.mask
+    return masks, np.array([mark.offset for mark in library], dtype=np.int64).reshape(-1, 2)
+
+
+def _stamp_random_marks(canvas, rows, cols, library: list[Mark], value: bool, rng) -> None:
+    """Stamp a mark drawn uniformly, with replacement, from ``library`` at every (row, col) (4.2)."""
+    chosen = rng.integers(0, len(library), size=rows.size)
+    masks, offsets = _packed(library)
+    _stamp_kernel(canvas, rows.astype(np.int64), cols.astype(np.int64), chosen, masks, offsets, value)
 
 
 def render_tone(distribution, marks, rng=None) -> np.ndarray:
@@ -240,7 +258,7 @@ def render_tone(distribution, marks, rng=None) -> np.ndarray:
     rng = np.random.default_rng(rng)
     canvas = np.full(centres.shape, white)
     rows, cols = np.nonzero(centres)
-    _stamp(canvas, rows, cols, _random_marks(library, rows.size, rng), not white)
+    _stamp_random_marks(canvas, rows, cols, library, not white, rng)
     return canvas
 
 
@@ -333,12 +351,28 @@ def select_tones(image, tone_grays, rng=None) -> np.ndarray:
     grays = _checked_grays(tone_grays)
     rng = np.random.default_rng(rng)
     order = np.argsort(grays)
-    ordered = grays[order]
-    gray = np.clip(gray, ordered[0], ordered[-1])
-    left = np.clip(np.searchsorted(ordered, gray, side="right") - 1, 0, grays.size - 2)
-    p_right = (gray - ordered[left]) / (ordered[left + 1] - ordered[left])
-    chosen = left + (rng.random(gray.shape) < p_right)
-    return order[chosen].astype(np.int64)
+    tone_index = np.empty(gray.shape, dtype=np.int64)
+    # uniforms drawn a band of rows at a time (the same stream as one draw of the whole image)
+    # so that a 4096 x 4096 image needs no 128 MiB array of them
+    band = max(1, SELECTION_BAND_PIXELS // gray.shape[1])
+    for top in range(0, gray.shape[0], band):
+        rows = slice(top, top + band)
+        _select_kernel(gray[rows], grays[order], order, rng.random(gray[rows].shape), tone_index[rows])
+    return tone_index
+
+
+@numba.njit(cache=True)
+def _select_kernel(gray, ordered, order, uniforms, out):
+    """Figure 10's choice between the two tones whose sorted grays bracket each pixel's gray."""
+    last = ordered.shape[0] - 1
+    for r in range(gray.shape[0]):
+        for c in range(gray.shape[1]):
+            g = min(max(gray[r, c], ordered[0]), ordered[last])
+            left = 0
+            while left < last - 1 and ordered[left + 1] <= g:
+                left += 1
+            p_right = (g - ordered[left]) / (ordered[left + 1] - ordered[left])
+            out[r, c] = order[left + 1] if uniforms[r, c] < p_right else order[left]
 
 
 def distribution_image(tone_index, distribution_textures, rng=None) -> np.ndarray:
@@ -377,18 +411,35 @@ def distribution_image(tone_index, distribution_textures, rng=None) -> np.ndarra
     index = _checked_tone_index(tone_index, len(tiles))
     rng = np.random.default_rng(rng)
     side = tiles[0].shape[0]
-    height, width = index.shape
-    cells = (-(-height // side), -(-width // side))
+    cells = (-(-index.shape[0] // side), -(-index.shape[1] // side))
     turns = rng.integers(0, 4, size=(len(tiles), *cells))
-    out = np.zeros(index.shape, dtype=bool)
-    for tone, tile in enumerate(tiles):
-        where = index == tone
-        if not where.any():
-            continue
-        rotations = np.stack([np.rot90(tile, k) for k in range(4)])
-        large = rotations[turns[tone]].transpose(0, 2, 1, 3).reshape(cells[0] * side, cells[1] * side)
-        out[where] = large[:height, :width][where]
+    out = np.empty(index.shape, dtype=np.bool_)
+    _stitch_kernel(np.ascontiguousarray(index, dtype=np.int64), np.stack(tiles), turns, out)
     return out
+
+
+@numba.njit(cache=True)
+def _stitch_kernel(index, tiles, turns, out):
+    """``out[r, c]`` = pixel (r, c) of the large texture of level ``index[r, c]``.
+
+    The large texture of level t holds, in tile cell (R, C), ``np.rot90(tiles[t], turns[t, R, C])``.
+    """
+    side = tiles.shape[1]
+    last = side - 1
+    for r in range(index.shape[0]):
+        i = r % side
+        for c in range(index.shape[1]):
+            j = c % side
+            tone = index[r, c]
+            turn = turns[tone, r // side, c // side]
+            if turn == 0:
+                out[r, c] = tiles[tone, i, j]
+            elif turn == 1:  # np.rot90(a, 1)[i, j] == a[j, last - i]
+                out[r, c] = tiles[tone, j, last - i]
+            elif turn == 2:
+                out[r, c] = tiles[tone, last - i, last - j]
+            else:
+                out[r, c] = tiles[tone, last - j, i]
 
 
 def place_marks(distribution, tone_index, marks_per_tone, rng=None) -> np.ndarray:
@@ -440,8 +491,7 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None) -> np.ndarra
     for colour in (False, True):
         for tone in np.flatnonzero(white == colour):
             here = tones == tone
-            marks = _random_marks(libraries[tone], int(here.sum()), rng)
-            _stamp(canvas, rows[here], cols[here], marks, not colour)
+            _stamp_random_marks(canvas, rows[here], cols[here], libraries[tone], not colour, rng)
     return canvas
 
 

@@ -1,0 +1,150 @@
+"""From example tone textures to a renderable stipple library (Kim et al. 2009, Figure 2).
+
+The paper's system (its Figure 2) runs once per artist: example textures of the tone map
+(section 3.1) -> example distribution textures and mark libraries (3.2) -> synthesized
+distribution textures (3.4) -> tone grays by pre-simulation (4.1). The result is all the
+rendering of section 4 needs. :func:`learn_stipple_library` chains those steps, and
+:class:`StippleLibrary` keeps every intermediate so that notebooks can show and measure them
+(Figures 5, 7 and 8) and :meth:`StippleLibrary.render` can stipple any number of images.
+
+Every tone gets its own random stream spawned from ``rng`` (:mod:`paperlib.parallel`), so
+the library is the same bit for bit whether its tones are synthesized one after another or in
+parallel processes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from ..parallel import run_many, spawn_seeds
+from .extraction import DistributionResult, Mark, extract_distribution, extract_marks
+from .glcm import check_bitonal
+from .rendering import StippleRendering, render_stippling, tone_gray_levels
+from .synthesis import SynthesisResult, synthesize_distribution
+from .tone_map import ToneMap
+
+__all__ = ["StippleLibrary", "learn_stipple_library"]
+
+
+@dataclass(frozen=True)
+class StippleLibrary:
+    """Everything learnt from one artist's tone textures, lightest tone first.
+
+    Attributes
+    ----------
+    examples : list of ndarray of bool
+        The example stipple textures (``True`` = ink).
+    distributions : list of DistributionResult
+        Their example distribution textures (section 3.2).
+    syntheses : list of SynthesisResult
+        The synthesized distribution textures (section 3.4), one square tile per tone.
+    marks : list of list of Mark
+        The mark library of every tone (section 3.2, used in 4.2).
+    tone_grays : ndarray of float
+        Gray of every tone in [0, 1] (1 white), pre-simulated from its tile and marks (4.1).
+    """
+
+    examples: list
+    distributions: list
+    syntheses: list
+    marks: list
+    tone_grays: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.examples)
+
+    @property
+    def tiles(self) -> list[np.ndarray]:
+        """The synthesized distribution tiles, as :func:`render_stippling` takes them."""
+        return [synthesis.texture for synthesis in self.syntheses]
+
+    @property
+    def levels(self) -> list[str]:
+        """Level of every tone: ``"light"``, ``"merged"`` or ``"dark"``."""
+        return [distribution.level for distribution in self.distributions]
+
+    def render(self, image, *, min_chunk: int = 1, rng=None) -> StippleRendering:
+        """Stipple a grayscale image (0 black .. 1 white) with this library (section 4)."""
+        return render_stippling(image, self.tiles, self.marks, tone_grays=self.tone_grays, min_chunk=min_chunk, rng=rng)
+
+
+def _example_textures(tone_textures) -> list[np.ndarray]:
+    textures = tone_textures.textures if isinstance(tone_textures, ToneMap) else list(tone_textures)
+    if len(textures) < 2:
+        raise ValueError(f"a stipple library needs at least two tone textures, got {len(textures)}")
+    return [check_bitonal(texture) for texture in textures]
+
+
+def _tile_size(size, examples) -> int:
+    if size is None:
+        return min(min(texture.shape) for texture in examples)
+    if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 2:
+        raise ValueError(f"size must be an integer >= 2 (the side of the square tiles), got {size!r}")
+    return int(size)
+
+
+def _learn_tone(task, *, size: int, iterations: int, rng) -> tuple[DistributionResult, SynthesisResult, list[Mark]]:
+    """Sections 3.2 and 3.4 for one example texture."""
+    texture, level = task
+    distribution = extract_distribution(texture, level)
+    synthesis = synthesize_distribution(distribution.distribution, size=size, iterations=iterations, rng=rng)
+    return distribution, synthesis, extract_marks(texture, distribution.level)
+
+
+def learn_stipple_library(
+    tone_textures, *, size=None, iterations: int = 30, levels=None, gray_repeats: int = 1, workers: int = 1, rng=None
+) -> StippleLibrary:
+    """Learn a stipple library from example tone textures (Kim et al. 2009, sections 3.2-4.1).
+
+    Parameters
+    ----------
+    tone_textures : ToneMap or sequence of array_like
+        The example stipple textures, lightest tone first, bitonal (``True`` / 1 = ink), e.g.
+        :func:`paperlib.stipple.extract_tone_map`'s result. At least two.
+    size : int, optional
+        Side of the square synthesized tiles; default the shortest side of the examples (the
+        paper synthesizes 256 x 256 tiles).
+    iterations : int, optional
+        Maximum synthesis iterations per tone (paper: 30).
+    levels : sequence of str, optional
+        Level of every tone (``"light"``, ``"merged"``, ``"dark"`` or ``"auto"``); default all
+        ``"auto"`` (:func:`paperlib.stipple.classify_level`).
+    gray_repeats : int, optional
+        Pre-simulations averaged per tone gray (:func:`tone_gray_levels`).
+    workers : int, optional
+        Processes synthesizing tones in parallel (default 1, this process); the result does not
+        depend on it.
+    rng : None, int or numpy.random.Generator, optional
+        Random source; a seed fixes the library bit for bit.
+
+    Returns
+    -------
+    StippleLibrary
+
+    Raises
+    ------
+    ValueError
+        Fewer than two textures, non-bitonal or empty textures, a tile side < 2, a wrong
+        number of levels, ``iterations`` < 1, and the errors of the steps.
+
+    References
+    ----------
+    Kim et al. 2009, Figure 2 (the system), 3.2 (distributions, marks), 3.4 (synthesis), 4.1
+    (tone grays by pre-simulation).
+    """
+    examples = _example_textures(tone_textures)
+    size = _tile_size(size, examples)
+    levels = ["auto"] * len(examples) if levels is None else list(levels)
+    if len(levels) != len(examples):
+        raise ValueError(f"need one level per tone texture: {len(examples)} textures, {len(levels)} levels")
+    synthesis_seed, gray_seed = spawn_seeds(rng, 2)
+    learn = partial(_learn_tone, size=size, iterations=iterations)
+    learnt = run_many(learn, list(zip(examples, levels)), rng=synthesis_seed, workers=workers)
+    distributions, syntheses, marks = (list(column) for column in zip(*learnt))
+    grays = tone_gray_levels(
+        [synthesis.texture for synthesis in syntheses], marks, repeats=gray_repeats, rng=np.random.default_rng(gray_seed)
+    )
+    return StippleLibrary(examples, distributions, syntheses, marks, grays)
