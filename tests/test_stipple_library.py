@@ -7,6 +7,7 @@ from paperlib.datasets import stipple_tone_texture
 from paperlib.stipple import (
     StippleLibrary,
     extract_distribution,
+    extract_marks,
     learn_stipple_library,
     synthesize_distribution,
     tone_gray_levels,
@@ -29,9 +30,15 @@ def library(examples):
 def test_library_holds_one_of_each_step_per_tone(library, examples):
     assert isinstance(library, StippleLibrary) and len(library) == len(TONES)
     assert library.levels == ["light", "merged", "dark"]
+    light_s_avg = extract_distribution(examples[0]).s_avg
+    assert library.distributions[1].s_avg == light_s_avg  # merged blobs split into light-tone stipples
     for example, distribution, tile, marks in zip(examples, library.distributions, library.tiles, library.marks):
-        np.testing.assert_array_equal(distribution.distribution, extract_distribution(example).distribution)
+        s_avg = light_s_avg if distribution.level == "merged" else None
+        np.testing.assert_array_equal(distribution.distribution, extract_distribution(example, s_avg=s_avg).distribution)
         assert tile.shape == (48, 48) and tile.any() and marks
+    light_marks = extract_marks(examples[0], "light")  # merged stipples are drawn with the light tone's marks
+    assert len(library.marks[1]) == len(light_marks)
+    assert all(np.array_equal(a.mask, b.mask) and a.offset == b.offset for a, b in zip(library.marks[1], light_marks))
     # lighter tones render lighter: the pre-simulated grays decrease with the ink tone
     assert np.all(np.diff(library.tone_grays) < 0)
 

@@ -16,7 +16,10 @@ from paperlib.stipple.synthesis import (
 
 @pytest.fixture(scope="module")
 def example():
-    return stipple_tone_texture(0.15, 64, rng=3)
+    """An example distribution texture (one pixel per stipple), what section 3.4 synthesizes."""
+    from paperlib.stipple.extraction import extract_distribution
+
+    return extract_distribution(stipple_tone_texture(0.15, 64, rng=3)).distribution
 
 
 @pytest.fixture(scope="module")
@@ -76,11 +79,18 @@ def test_stipple_radius_stays_in_the_papers_ranges():
 # the kernel against a pure Python pass
 
 
-def reference_pass(texture, offsets, target, order, choices, spreads, radii, fixed_radius):
+def reference_pass(texture, offsets, target, order, choices, spreads, radii, fixed_radius, regions):
     """Section 3.4.1-3.4.2 spelled out: full ACE recomputation for every candidate flip."""
-    texture = texture.copy()
-    considered = np.zeros(texture.shape, dtype=bool)
+    texture, regions = texture.copy(), regions.copy()
     rows, cols = np.indices(texture.shape)
+
+    def disc(y, x, radius):
+        return (rows - y) ** 2 + (cols - x) ** 2 <= radius**2
+
+    considered = np.zeros(texture.shape, dtype=bool)
+    for y, x in zip(*np.nonzero(texture)):  # the existing stipples' regions, without the stipples
+        considered |= disc(y, x, fixed_radius if fixed_radius >= 0 else regions[y, x])
+    considered &= ~texture
     current = ace(target, normalized_glcms(cooccurrence_counts(texture, offsets)))
     for t, flat in enumerate(order):
         y, x = divmod(int(flat), texture.shape[1])
@@ -92,10 +102,11 @@ def reference_pass(texture, offsets, target, order, choices, spreads, radii, fix
         if candidate < current - 1e-12:
             current = candidate
             radius = fixed_radius if fixed_radius >= 0 else _stipple_radius.py_func(choices[t], spreads[t], *radii)
-            considered |= (rows - y) ** 2 + (cols - x) ** 2 <= radius**2
+            regions[y, x] = radius if texture[y, x] else 0.0
+            considered |= disc(y, x, radius)
         else:
             texture[y, x] = ~texture[y, x]
-    return texture
+    return texture, regions
 
 
 @pytest.mark.parametrize("fixed_radius", [-1.0, 0.0, 1.5])
@@ -108,19 +119,34 @@ def test_spin_flip_pass_matches_python_reference(fixed_radius):
     order = rng.permutation(seed.size).astype(np.int64)
     choices, spreads = rng.random(seed.size), rng.random(seed.size)
     radii = np.array([1.0, 2.0, 3.5])
-    expected = reference_pass(seed, offsets, target, order, choices, spreads, radii, fixed_radius)
+    regions = np.where(seed, 2.5, 0.0)
+    expected, expected_regions = reference_pass(seed, offsets, target, order, choices, spreads, radii, fixed_radius,
+                                                regions)
 
     texture, counts = seed.copy(), cooccurrence_counts(seed, offsets)
     totals = pair_totals(seed.shape, offsets).astype(np.float64)
     considered = np.zeros(seed.shape, dtype=bool)
     attempts, accepted = _spin_flip_pass(
-        texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed_radius, considered
+        texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed_radius, considered, regions
     )
     np.testing.assert_array_equal(texture, expected)
+    np.testing.assert_array_equal(regions, expected_regions)
     np.testing.assert_array_equal(counts, cooccurrence_counts(texture, offsets))
     assert accepted == np.count_nonzero(texture != seed) and accepted >= 1
     assert attempts == seed.size if fixed_radius == 0 else attempts <= seed.size
     assert considered.all()
+
+
+def test_synthesis_keeps_the_examples_hard_core():
+    """Section 3.4.2: no two synthesized stipples closer than the example's O_min."""
+    from scipy.spatial.distance import pdist
+
+    from paperlib.stipple.extraction import extract_distribution
+
+    distribution = extract_distribution(stipple_tone_texture(0.1, 96, rng=4)).distribution
+    geometry = stipple_geometry(distribution)
+    synthesized = synthesize_distribution(distribution, iterations=30, rng=1).texture
+    assert pdist(np.argwhere(synthesized)).min() >= geometry.o_min - 1e-9 > 3
 
 
 # --------------------------------------------------------------------------------------------
@@ -145,13 +171,13 @@ def test_ace_decreases_every_iteration(example, result):
     assert len(result.accepted_flips) == len(history) - 1 <= 30
 
 
-def test_final_counts_equal_a_full_recount(result):
+def test_final_counts_equal_a_full_recount(example, result):
     np.testing.assert_array_equal(result.counts, cooccurrence_counts(result.texture, result.offsets))
     np.testing.assert_array_equal(result.offsets, paper_offsets(64))
     assert result.texture.dtype == bool and result.texture.shape == (64, 64)
     assert result.final_ace == pytest.approx(
         ace(normalized_glcms(cooccurrence_counts(result.texture, result.offsets)),
-            normalized_glcms(cooccurrence_counts(stipple_tone_texture(0.15, 64, rng=3), result.offsets)))
+            normalized_glcms(cooccurrence_counts(example, result.offsets)))
     )
 
 

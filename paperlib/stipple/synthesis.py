@@ -4,7 +4,8 @@ A new bitonal distribution texture is grown from a seed texture (empty white by 
 Metropolis spin flips that lower the average co-occurrence error ACE (eq. 5) between its
 normalised GLCMs and the example's (section 3.4.1), with the pixel choice constrained by the
 example's stipple geometry (section 3.4.2): after each flip, every pixel within a radius ``D``
-of it is "considered" and cannot be chosen again during the iteration.
+of it is "considered" and cannot be chosen again during the iteration, and each later pass
+starts with the regions of all stipples placed so far considered.
 
 Our reading of the paper, step by step (the docstring of :func:`synthesize_distribution` repeats
 it with the parameters):
@@ -17,10 +18,19 @@ it with the parameters):
 - After an accepted flip, ``D = O + R`` (3.4.2; the paper's "P = O + R" names ``D``) with
   ``O = O_min, O_avg, O_max`` with probabilities 0.1, 0.8, 0.1 and ``R`` uniform in
   ``[0, O_avg - O_min)``, ``{0}``, ``(O_avg - O_max, 0]`` respectively, so ``D`` lies in
-  ``[O_min, O_max]``; the pixels at Euclidean distance ``<= D`` become considered.
+  ``[O_min, O_max]``; the pixels at Euclidean distance ``<= D`` become considered. The disc
+  is the stipple's *region* and the stipple keeps it: every pass starts with the regions of the
+  stipples already placed considered (the stipple pixels themselves stay free, so a stipple can
+  be flipped off). The paper says the considered mark lasts "during the current iteration" and
+  that the rule serves to "avoid random selections within any stipple regions" and "maintain
+  the geometrical information from the example texture"; clearing the mark at each iteration
+  would let later iterations put stipples next to earlier ones (we measured O_min of 1-3 px
+  against the example's 5-7 px that way), so the regions persist.
 - When every pixel is considered but the synthesis holds less ink than the example ("may not
   yet have reached ... the average gray value of the example"), the iteration runs one more
-  pass with ``D = O_min`` (the paper's fallback "we arbitrarily assign O_min to D").
+  pass with ``D = O_min`` for the new stipples and the regions of the existing ones (the
+  paper's fallback "we arbitrarily assign O_min to D"), so no two stipples come closer than
+  O_min.
 - The synthesis stops after ``iterations`` iterations (paper: 30) or after the first iteration
   that does not lower the ACE (3.4: "while the current error between them is reduced").
 
@@ -170,16 +180,39 @@ def _mark_considered(considered, y, x, radius):
 
 
 @numba.njit(cache=True)
-def _spin_flip_pass(texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed_radius, considered):
+def _mark_stipple_regions(considered, texture, regions, fixed_radius):
+    """Start of a pass: only the stipple regions of the existing stipples are considered.
+
+    Every ink pixel's region is the disc of its own radius ``regions[y, x]`` (``fixed_radius``
+    instead when >= 0: the O_min fallback); the stipple pixels themselves stay free, so a
+    stipple can still be flipped off.
+    """
+    considered[:, :] = False
+    height, width = texture.shape
+    for y in range(height):
+        for x in range(width):
+            if texture[y, x]:
+                _mark_considered(considered, y, x, fixed_radius if fixed_radius >= 0 else regions[y, x])
+    for y in range(height):
+        for x in range(width):
+            if texture[y, x]:
+                considered[y, x] = False
+
+
+@numba.njit(cache=True)
+def _spin_flip_pass(texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed_radius,
+                    considered, regions):
     """One pass of Metropolis spin flips with considered pixels; returns (attempts, accepted).
 
     ``order`` is a permutation of the flat pixel indices; ``choices[t]`` and ``spreads[t]`` are
     the uniforms that draw ``D`` if the pixel ``order[t]`` is flipped; ``radii`` holds
     ``(O_min, O_avg, O_max)``; ``fixed_radius >= 0`` replaces the draw (the O_min fallback, or
-    0 when the geometric constraint is off). ``considered`` is cleared first.
+    0 when the geometric constraint is off). ``regions`` holds the radius ``D`` of every
+    stipple placed so far (updated here); the pass starts with their regions considered
+    (:func:`_mark_stipple_regions`).
     """
     width = texture.shape[1]
-    considered[:, :] = False
+    _mark_stipple_regions(considered, texture, regions, fixed_radius)
     attempts = 0
     accepted = 0
     for t in range(order.shape[0]):
@@ -195,6 +228,7 @@ def _spin_flip_pass(texture, counts, offsets, target, totals, order, choices, sp
             radius = fixed_radius
             if radius < 0:
                 radius = _stipple_radius(choices[t], spreads[t], radii[0], radii[1], radii[2])
+            regions[y, x] = radius if texture[y, x] else 0.0
             _mark_considered(considered, y, x, radius)
     return attempts, accepted
 
@@ -305,11 +339,11 @@ def synthesize_distribution(
     synthesis' normalised GLCMs over all offsets, by more than ``1e-12``; otherwise it stays
     (the paper's Metropolis spin flip keeps improving flips only and gives no probability for
     worse ones, 3.4.1). After a kept flip, the pixels within radius ``D`` of it become
-    considered, ``D = O + R`` with ``O`` = O_min / O_avg / O_max with probabilities
+    considered (its stipple region, which stays considered in later passes), ``D = O + R`` with ``O`` = O_min / O_avg / O_max with probabilities
     0.1 / 0.8 / 0.1 and ``R`` uniform in ``[0, O_avg - O_min)`` / ``{0}`` /
     ``(O_avg - O_max, 0]`` (3.4.2). When all pixels are considered while the synthesis still
     holds less ink than the example, the iteration makes one more pass with ``D = O_min``
-    (3.4.2's fallback). The synthesis stops after ``iterations`` iterations or at the first
+    for every region (3.4.2's fallback). The synthesis stops after ``iterations`` iterations or at the first
     iteration that does not lower the ACE (3.4).
 
     Parameters
@@ -384,6 +418,8 @@ def synthesize_distribution(
     target_ink = target_texture.mean() * texture.size
     radii = np.zeros(3) if constraint is None else np.array([constraint.o_min, constraint.o_avg, constraint.o_max])
     considered = np.zeros(texture.shape, dtype=np.bool_)
+    # radius D of every stipple's region; the seed texture's own stipples get O_min
+    regions = np.where(texture, radii[0], 0.0)
     converged = False
     for _ in range(iterations):
         # all randomness of the iteration drawn here, in a fixed order, for bit-for-bit repeats
@@ -391,12 +427,13 @@ def synthesize_distribution(
         choices, spreads = generator.random(texture.size), generator.random(texture.size)
         fixed = 0.0 if constraint is None else -1.0
         tried, kept = _spin_flip_pass(
-            texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed, considered
+            texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed, considered, regions
         )
         fallback = constraint is not None and kept > 0 and np.count_nonzero(texture) < target_ink
         if fallback:
             more_tried, more_kept = _spin_flip_pass(
-                texture, counts, offsets, target, totals, order, choices, spreads, radii, constraint.o_min, considered
+                texture, counts, offsets, target, totals, order, choices, spreads, radii, constraint.o_min, considered,
+                regions,
             )
             tried, kept = tried + more_tried, kept + more_kept
         accepted.append(kept)
