@@ -105,3 +105,23 @@ def test_sheet_deterministic_and_bad_input():
                    dict(cell=0), dict(n_tones=2.0)]:
         with pytest.raises(ValueError):
             stipple_tone_sheet(**kwargs)
+
+
+def test_mark_rasterisation_equals_scikit_image():
+    """The generator's fast ellipse and disk give skimage.draw's pixels, in skimage's order."""
+    from skimage.draw import disk, ellipse
+
+    from paperlib.datasets.stipple import _disk, _ellipse
+
+    rng = np.random.default_rng(0)
+    shape = (40, 50)
+    for _ in range(2000):
+        center = tuple(rng.uniform(-5, 55, size=2))
+        r_radius, c_radius = rng.uniform(0.3, 9, size=2)
+        rotation = rng.uniform(-4, 4)
+        expected = ellipse(*center, r_radius, c_radius, shape=shape, rotation=rotation)
+        got = _ellipse(center, r_radius, c_radius, shape, rotation=rotation)
+        for a, b in zip(expected, got):
+            np.testing.assert_array_equal(a, b)
+        for a, b in zip(disk(center, r_radius, shape=shape), _disk(center, r_radius, shape)):
+            np.testing.assert_array_equal(a, b)

@@ -67,8 +67,8 @@ from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
-from skimage.draw import disk, ellipse
 
 from paperlib._checks import positive_number
 
@@ -109,23 +109,69 @@ def _check_size(size, name: str, minimum: int) -> int:
 # ============================================================================ marks
 
 
+@numba.njit(cache=True)
+def _inside_ellipse(top, left, bottom, right, center_r, center_c, r_radius, c_radius, sin_alpha, cos_alpha):
+    """Pixels of the box [top, bottom] x [left, right] strictly inside the ellipse, row-major."""
+    rows = np.empty((bottom - top + 1) * (right - left + 1), dtype=np.int64)
+    cols = np.empty_like(rows)
+    count = 0
+    shifted_r, shifted_c = center_r - top, center_c - left
+    for i in range(bottom - top + 1):
+        r = float(i) - shifted_r
+        for j in range(right - left + 1):
+            c = float(j) - shifted_c
+            along = (r * cos_alpha + c * sin_alpha) / r_radius
+            across = (r * sin_alpha - c * cos_alpha) / c_radius
+            if along * along + across * across < 1:
+                rows[count], cols[count] = top + i, left + j
+                count += 1
+    return rows[:count], cols[:count]
+
+
+def _ellipse(center, r_radius, c_radius, shape, rotation=0.0):
+    """``skimage.draw.ellipse(*center, r_radius, c_radius, shape=shape, rotation=rotation)``.
+
+    The same pixels in the same order (the tests compare them), without its per-call array
+    overhead: the generator draws tens of thousands of small marks.
+    """
+    rotation %= math.pi
+    sin_alpha, cos_alpha = float(np.sin(rotation)), float(np.cos(rotation))
+    r_extent = abs(r_radius * cos_alpha) + c_radius * sin_alpha
+    c_extent = r_radius * sin_alpha + abs(c_radius * cos_alpha)
+    top, left = max(math.ceil(center[0] - r_extent), 0), max(math.ceil(center[1] - c_extent), 0)
+    bottom = min(math.floor(center[0] + r_extent), shape[0] - 1)
+    right = min(math.floor(center[1] + c_extent), shape[1] - 1)
+    if bottom < top or right < left:
+        return np.empty(0, np.int64), np.empty(0, np.int64)
+    return _inside_ellipse(top, left, bottom, right, float(center[0]), float(center[1]), float(r_radius),
+                           float(c_radius), sin_alpha, cos_alpha)
+
+
+def _disk(center, radius, shape):
+    """``skimage.draw.disk(center, radius, shape=shape)``."""
+    return _ellipse(center, radius, radius, shape)
+
+
 def _mark_pixels(center, axes, angle, lobe, shape):
     """Flat indices (unique) of one mark's pixels: its ellipse plus the optional lobe."""
-    rows, cols = ellipse(center[0], center[1], axes[0], axes[1], shape=shape, rotation=angle)
+    rows, cols = _ellipse(center, axes[0], axes[1], shape, rotation=angle)
     if lobe is not None:
         lobe_center, lobe_radius = lobe
-        lrows, lcols = disk(lobe_center, lobe_radius, shape=shape)
+        lrows, lcols = _disk(lobe_center, lobe_radius, shape)
         rows, cols = np.concatenate([rows, lrows]), np.concatenate([cols, lcols])
     return np.unique(np.ravel_multi_index((rows, cols), shape))
 
 
+@numba.njit(cache=True)
 def _touches(ink, flat):
     """Whether any 8-neighbour (or the pixel itself) of the pixels ``flat`` is ink."""
-    rows, cols = np.unravel_index(flat, ink.shape)
-    for dr in (-1, 0, 1):
-        for dc in (-1, 0, 1):
-            if ink[np.clip(rows + dr, 0, ink.shape[0] - 1), np.clip(cols + dc, 0, ink.shape[1] - 1)].any():
-                return True
+    height, width = ink.shape
+    for index in flat:
+        row, col = index // width, index % width
+        for r in range(max(row - 1, 0), min(row + 2, height)):
+            for c in range(max(col - 1, 0), min(col + 2, width)):
+                if ink[r, c]:
+                    return True
     return False
 
 
@@ -158,7 +204,7 @@ def _throw_marks(shape, target, mark_radius, min_distance, separate, rng):
     for distance, keep_separate in passes:
         forbidden = np.zeros(shape, dtype=bool)
         for row, col in centres:  # the hard core applies to the centres of earlier passes too
-            forbidden[disk((row, col), distance, shape=shape)] = True
+            forbidden[_disk((row, col), distance, shape)] = True
         for flat in rng.permutation(shape[0] * shape[1]):
             if count >= target:
                 return ink, centres, radii, jammed
@@ -176,7 +222,7 @@ def _throw_marks(shape, target, mark_radius, min_distance, separate, rng):
             centres.append((row, col))
             radii.append(radius)
             if distance > 0:
-                forbidden[disk((row, col), distance, shape=shape)] = True
+                forbidden[_disk((row, col), distance, shape)] = True
         if count >= target:
             break
         jammed = True
