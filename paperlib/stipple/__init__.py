@@ -1,7 +1,5 @@
 """Kim et al. 2009, stippling by example.
 
-Done so far (issue 5 in progress):
-
 - :mod:`.tone_map`: section 3.1, tone maps extracted from a stipple drawing
   (:func:`extract_tone_map`: N x N block grays, regions within T1, tones within T2,
   largest rectangular textures);
@@ -13,17 +11,18 @@ Done so far (issue 5 in progress):
   of 3.4.2 (:func:`synthesize_distribution`), with the stipple geometry of 3.2
   (:func:`stipple_geometry`: S_avg, O_min, O_avg, O_max);
 - :mod:`.voronoi_stippling`: the baseline of the comparisons, Secord's (2002) weighted Voronoi
-  stippling (:func:`weighted_voronoi_stipples`, :func:`render_stipples`).
-
+  stippling (:func:`weighted_voronoi_stipples`, :func:`render_stipples`);
 - :mod:`.extraction`: section 3.2, light / merged / dark levels, distribution textures (component
   centres; constrained Lloyd inside merged blobs) and the mark library (:func:`extract_distribution`,
-  :func:`extract_marks`).
-
+  :func:`extract_marks`);
 - :mod:`.rendering`: section 4, tone grays by pre-simulation, probabilistic tone selection
   (Fig. 10), distribution images from randomly rotated tiles, black then white mark placement,
-  small-chunk removal (Fig. 11), all chained by :func:`render_stippling`.
+  small-chunk removal (Fig. 11), all chained by :func:`render_stippling`;
+- :mod:`.library`: the system of Figure 2, from example tone textures to a renderable
+  :class:`StippleLibrary` (:func:`learn_stipple_library`).
 
-The notebooks, the widget and the benchmarks are to come.
+Notebooks ``kim2009_*`` re-run the figures; :func:`paperlib.widgets.stipple_explorer` explores
+the parameters; ``benchmarks/bench_stipple.py`` times synthesis and rendering.
 """
 
 from .extraction import LEVELS, DistributionResult, Mark, classify_level, extract_distribution, extract_marks

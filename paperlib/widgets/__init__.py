@@ -3,6 +3,8 @@
 - :func:`arrangement_explorer`: Hurtut 2009 (:mod:`paperlib.arrangement`): pick an exemplar or
   load an SVG, see its appearance categories, tune T, the synthesis window and a density image,
   re-synthesize.
+- :func:`stipple_explorer`: Kim 2009 (:mod:`paperlib.stipple`): learn a stipple library from
+  synthetic tone textures (tone-map parameters, iterations, tile size), stipple an image.
 
 Each explorer keeps its update logic in plain methods, so tests and notebooks drive it without a
 browser, and renders its figure to PNG (works headless, with the Agg backend and in papermill).
@@ -17,8 +19,9 @@ from .arrangement import (
     density_image,
     scaled_window,
 )
+from .stipple import StippleExplorer, stipple_explorer
 
 __all__ = [
     "DENSITY_KINDS", "EXEMPLARS", "ArrangementExplorer", "Drawing", "arrangement_explorer", "density_image",
-    "scaled_window",
+    "scaled_window", "StippleExplorer", "stipple_explorer",
 ]

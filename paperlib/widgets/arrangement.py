@@ -56,18 +56,16 @@ categorize and generate each example).
 
 from __future__ import annotations
 
-import html
-import io
 import math
 import time
 import warnings
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from paperlib import datasets
+from paperlib.widgets._base import ExplorerBase
 from paperlib.arrangement import Arrangement, adjusted_rand_index, categorize, fit, render, synthesize
 from paperlib.arrangement import element_positions
 from paperlib.geometry import as_elements, read_svg
@@ -234,7 +232,7 @@ def _svg_drawing(path) -> Drawing:
 # ---------------------------------------------------------------------------- the explorer
 
 
-class ArrangementExplorer:
+class ArrangementExplorer(ExplorerBase):
     """Widgets and state of the Hurtut 2009 explorer (built by :func:`arrangement_explorer`).
 
     Attributes
@@ -333,9 +331,7 @@ class ArrangementExplorer:
         ])
 
     def _connect(self):
-        def on(control, method):
-            control.observe(lambda change: None if self._quiet_depth else method(), names="value")
-
+        on = self._on_change
         on(self.exemplar, self._on_exemplar)
         on(self.exemplar_seed, self._on_exemplar)
         on(self.labels, self.synthesize)
@@ -345,18 +341,6 @@ class ArrangementExplorer:
             on(control, self.synthesize)
         self.load_button.on_click(lambda _: self.load_svg(self.svg_path.value))
         self.resynthesize_button.on_click(lambda _: self.next_seed())
-
-    @contextmanager
-    def _quiet(self):
-        """Set controls without triggering their callbacks."""
-        self._quiet_depth += 1
-        try:
-            yield
-        finally:
-            self._quiet_depth -= 1
-
-    def _repr_mimebundle_(self, **kwargs):
-        return self.widget._repr_mimebundle_(**kwargs)
 
     # ------------------------------------------------------------------ actions
 
@@ -506,22 +490,6 @@ class ArrangementExplorer:
         self.calls["synthesize"] += 1
 
     # ------------------------------------------------------------------ output
-
-    def _show(self, began: float):
-        t0 = time.perf_counter()
-        self.figure = self._draw()
-        buffer = io.BytesIO()
-        self.figure.savefig(buffer, format="png", dpi=self._dpi)
-        self.image.value = buffer.getvalue()
-        self.times["draw"] = time.perf_counter() - t0
-        self.times["total"] = time.perf_counter() - began
-        self.summary = self._summary_text()
-        lines = [html.escape(line) for line in self.summary.splitlines()]
-        text = "<br>".join(lines)
-        if self.message:
-            colour = "#b00020" if self.error is not None else "#a15c00"
-            text += f"<br><span style='color:{colour}'>{html.escape(self.message).replace(chr(10), '<br>')}</span>"
-        self.status.value = f"<div style='font-family:monospace;font-size:12px'>{text}</div>"
 
     def _summary_text(self) -> str:
         if self.drawing is None:

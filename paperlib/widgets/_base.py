@@ -1,0 +1,53 @@
+"""Plumbing shared by the explorers: quiet control updates, callbacks, PNG figure, status line.
+
+An explorer subclass sets ``widget``, ``image`` (an ipywidgets Image), ``status`` (an HTML
+widget), ``times``, ``message``, ``error``, ``_dpi`` and ``_quiet_depth = 0``, and implements
+``_draw()`` (a matplotlib Figure) and ``_summary_text()`` (the status lines).
+"""
+
+from __future__ import annotations
+
+import html
+import io
+import time
+from contextlib import contextmanager
+
+
+class ExplorerBase:
+    """Behaviour common to every explorer of :mod:`paperlib.widgets` (see the module docstring)."""
+
+    def _on_change(self, control, method) -> None:
+        """Call ``method()`` when ``control``'s value changes, unless set inside :meth:`_quiet`."""
+        control.observe(lambda change: None if self._quiet_depth else method(), names="value")
+
+    @contextmanager
+    def _quiet(self):
+        """Set controls without triggering their callbacks."""
+        self._quiet_depth += 1
+        try:
+            yield
+        finally:
+            self._quiet_depth -= 1
+
+    def _repr_mimebundle_(self, **kwargs):
+        return self.widget._repr_mimebundle_(**kwargs)
+
+    def _show(self, began: float) -> None:
+        """Draw the figure into the PNG image widget, then the status line; record the times."""
+        t0 = time.perf_counter()
+        self.figure = self._draw()
+        buffer = io.BytesIO()
+        self.figure.savefig(buffer, format="png", dpi=self._dpi)
+        self.image.value = buffer.getvalue()
+        self.times["draw"] = time.perf_counter() - t0
+        self.times["total"] = time.perf_counter() - began
+        self._show_status()
+
+    def _show_status(self) -> None:
+        """The summary lines, then the message in red (an error) or amber (a note)."""
+        self.summary = self._summary_text()
+        text = "<br>".join(html.escape(line) for line in self.summary.splitlines())
+        if self.message:
+            colour = "#b00020" if self.error is not None else "#a15c00"
+            text += f"<br><span style='color:{colour}'>{html.escape(self.message).replace(chr(10), '<br>')}</span>"
+        self.status.value = f"<div style='font-family:monospace;font-size:12px'>{text}</div>"
