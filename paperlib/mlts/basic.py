@@ -26,8 +26,8 @@ are sequential loops and run as numba kernels; nearest-centre labels use ``scipy
 
 References
 ----------
-.. [1] L. Alvarez, N. Monzon, J.-M. Morel, "Abstract textures by a multi-layered texture sampler",
-   2015, section 2.4 and Fig. 5.
+.. [1] L. Alvarez, Y. Gousseau, J.-M. Morel, A. Salgado, "Exploring the space of abstract
+   textures by principles and random sampling", J. Math. Imaging Vis. 53 (2015), section 2.4 and Fig. 5.
 .. [2] L. Alvarez, Y. Gousseau, J.-M. Morel, "The size of objects in natural and artificial
    images", Advances in Imaging and Electron Physics 111, 1999 (ref. [1] of the paper).
 .. [3] A. B. Lee, D. Mumford, J. Huang, "Occlusion models for natural images: a statistical study

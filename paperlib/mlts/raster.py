@@ -17,9 +17,9 @@ points each interval holds to the pixels it spans, in O(pixels) rather than O(sa
 
 References
 ----------
-.. [1] L. Alvarez, N. Monzon, J.-M. Morel, "Abstract textures by a multi-layered texture sampler",
-   2015, section 5 (rendering), 5.2 (transparency), 5.3 (light spot), 5.4 ("keep father inclusion
-   property").
+.. [1] L. Alvarez, Y. Gousseau, J.-M. Morel, A. Salgado, "Exploring the space of abstract
+   textures by principles and random sampling", J. Math. Imaging Vis. 53 (2015), section 5
+   (rendering), 5.2 (transparency), 5.3 (light spot), 5.4 ("keep father inclusion property").
 """
 
 from __future__ import annotations
@@ -390,7 +390,7 @@ def coverage(vertices, shape, *, samples: int = 4, clip=None) -> tuple[int, int,
 
     References
     ----------
-    .. [1] Alvarez, Monzon, Morel 2015, section 5 (objects drawn in the image by the rendering rules).
+    .. [1] Alvarez, Gousseau, Morel, Salgado 2015, section 5 (objects drawn in the image by the rendering rules).
     """
     polygon = _as_polygon(vertices, "vertices")
     height, width = _check_shape(shape)
@@ -440,7 +440,7 @@ def paint(canvas, polygons, colors, *, alphas=None, lights=None, light_height=No
 
     References
     ----------
-    .. [1] Alvarez, Monzon, Morel 2015, section 3 (occlusion: later objects in front),
+    .. [1] Alvarez, Gousseau, Morel, Salgado 2015, section 3 (occlusion: later objects in front),
        5.2 (transparency), 5.3 (light spot), 5.4 (keep father inclusion).
     """
     _check_canvas(canvas)
@@ -478,7 +478,7 @@ def render_polygons(polygons, colors, shape, *, background=(1.0, 1.0, 1.0), alph
 
     References
     ----------
-    .. [1] Alvarez, Monzon, Morel 2015, section 5 (rendering of the geometric structure).
+    .. [1] Alvarez, Gousseau, Morel, Salgado 2015, section 5 (rendering of the geometric structure).
     """
     height, width = _check_shape(shape)
     back = _check_background(background)
