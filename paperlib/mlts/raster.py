@@ -31,6 +31,8 @@ import numpy as np
 
 from paperlib._checks import positive_number
 
+from .texels import check_polygon
+
 __all__ = ["coverage", "paint", "render_polygons", "MAX_SAMPLES"]
 
 MAX_SAMPLES = 64
@@ -253,18 +255,6 @@ def _check_shape(shape) -> tuple[int, int]:
     return height, width
 
 
-def _as_polygon(vertices, name: str) -> np.ndarray:
-    try:
-        array = np.array(vertices, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of (x, y) vertices of shape (k, 2), k >= 3") from None
-    if array.ndim != 2 or array.shape[1] != 2 or array.shape[0] < 3:
-        raise ValueError(f"{name} must have shape (k, 2) with k >= 3 vertices, got shape {array.shape}")
-    if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} has NaN or infinite coordinates")
-    return array
-
-
 def _pack(polygons: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """All vertices in one (N, 2) array and the offsets (n + 1,) of each polygon in it."""
     sizes = np.array([len(p) for p in polygons], dtype=np.int64)
@@ -334,7 +324,7 @@ def _check_clip(clip, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     for i, entry in enumerate(clip):
         if entry is not None:
             clip_of[i] = len(polygons)
-            polygons.append(_as_polygon(entry, f"clip[{i}]"))
+            polygons.append(check_polygon(entry, f"clip[{i}]"))
     verts, offsets = _pack(polygons)
     return verts, offsets, clip_of
 
@@ -392,10 +382,10 @@ def coverage(vertices, shape, *, samples: int = 4, clip=None) -> tuple[int, int,
     ----------
     .. [1] Alvarez, Gousseau, Morel, Salgado 2015, section 5 (objects drawn in the image by the rendering rules).
     """
-    polygon = _as_polygon(vertices, "vertices")
+    polygon = check_polygon(vertices, "vertices")
     height, width = _check_shape(shape)
     samples = _check_samples(samples)
-    clip_polygon = np.zeros((0, 2)) if clip is None else _as_polygon(clip, "clip")
+    clip_polygon = np.zeros((0, 2)) if clip is None else check_polygon(clip, "clip")
     row0, row1, col0, col1 = _object_box(polygon, 0, len(polygon), clip_polygon, 0, len(clip_polygon),
                                          height, width)
     if row1 <= row0 or col1 <= col0:
@@ -444,7 +434,7 @@ def paint(canvas, polygons, colors, *, alphas=None, lights=None, light_height=No
        5.2 (transparency), 5.3 (light spot), 5.4 (keep father inclusion).
     """
     _check_canvas(canvas)
-    shapes = [_as_polygon(p, f"polygons[{i}]") for i, p in enumerate(polygons)]
+    shapes = [check_polygon(p, f"polygons[{i}]") for i, p in enumerate(polygons)]
     n = len(shapes)
     color_array = _check_colors(colors, n)
     transparency = np.zeros(n) if alphas is None else _per_object(alphas, n, "alphas", low=0.0, high=1.0)

@@ -306,15 +306,16 @@ def _normalised(vertices: np.ndarray, start_angle: float) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 
 
-def _polygon_array(vertices, name: str = "vertices") -> np.ndarray:
+def check_polygon(vertices, name: str = "vertices") -> np.ndarray:
+    """``vertices`` as a finite float64 (k, 2) array with k >= 3, or a ValueError naming ``name``."""
     try:
         array = np.asarray(vertices, dtype=np.float64)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of (x, y) vertices, got {type(vertices).__name__}") from None
+        raise ValueError(f"{name} must be an array of (x, y) vertices of shape (k, 2), k >= 3") from None
     if array.ndim != 2 or array.shape[1] != 2 or array.shape[0] < 3:
-        raise ValueError(f"{name} must have shape (k, 2) with k >= 3, got shape {array.shape}")
+        raise ValueError(f"{name} must have shape (k, 2) with k >= 3 vertices, got shape {array.shape}")
     if not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} contain NaN or infinite coordinates")
+        raise ValueError(f"{name} has NaN or infinite coordinates")
     return array
 
 
@@ -382,7 +383,7 @@ def affine_object(vertices, center, diameter, aspect, angle) -> np.ndarray:
     Alvarez et al. 2015, section 3: "Each object O_{m,k} is obtained by an affine
     transformation of a texel"; section 4, AspRat_O(L_m) and Max_D(L_m).
     """
-    vertices = _polygon_array(vertices)
+    vertices = check_polygon(vertices)
     center = _finite_vector(center, 2, "center")
     diameter = positive_number(diameter, "diameter")
     aspect = _aspect_ratio(aspect)
@@ -420,7 +421,7 @@ def affine_objects(vertices_list, centers, diameters, aspects, angles) -> list[n
     if np.any(aspects < 1):
         raise ValueError("aspects must be >= 1 (1 keeps the texel's proportions)")
     if isinstance(vertices_list, np.ndarray) and vertices_list.ndim == 2:
-        return list(transform_shared(_polygon_array(vertices_list), centers, diameters, aspects, angles))
+        return list(transform_shared(check_polygon(vertices_list), centers, diameters, aspects, angles))
     texels = _texels_per_object(vertices_list, n_objects)
     counts = np.array([len(t) for t in texels], dtype=np.intp)
     stacked = np.concatenate(texels) if texels else np.empty((0, 2))
@@ -458,8 +459,8 @@ def _per_object(values, n_objects: int, name: str) -> np.ndarray:
 
 def _texels_per_object(vertices_list, n_objects: int) -> list[np.ndarray]:
     if isinstance(vertices_list, np.ndarray) and vertices_list.ndim == 2:
-        return [_polygon_array(vertices_list)] * n_objects
-    texels = [_polygon_array(v, f"vertices_list[{i}]") for i, v in enumerate(vertices_list)]
+        return [check_polygon(vertices_list)] * n_objects
+    texels = [check_polygon(v, f"vertices_list[{i}]") for i, v in enumerate(vertices_list)]
     if len(texels) != n_objects:
         raise ValueError(f"vertices_list has {len(texels)} texels for {n_objects} centers")
     return texels
@@ -630,7 +631,7 @@ def object_diameter(polygon) -> float:
     Alvarez et al. 2015, section 4, Max_D(L_m) ("maximum diameter of an object") and the size
     reduction factor s_R(L_m).
     """
-    polygon = _polygon_array(polygon, "polygon")
+    polygon = check_polygon(polygon, "polygon")
     # Texels have at most a few hundred vertices: all pairs in C are cheaper than a hull.
     return float(pdist(polygon).max())
 
