@@ -19,6 +19,7 @@ from paperlib.mlts.texels import (
     orientation_angle,
     orientation_angles,
     texel,
+    texels,
 )
 
 SEEDS = range(40)
@@ -374,3 +375,29 @@ def test_vectorised_orientation_bad_input():
             call([0, 0], (1, 0, 0))
         with pytest.raises(ValueError):
             call([[np.nan, 0]], (1, 0, 0))
+
+
+@pytest.mark.parametrize("kind", TEXELS)
+def test_texels_in_one_draw_are_valid_reproducible_and_independent(kind):
+    batch = texels(kind, 40, 5)
+    assert len(batch) == 40
+    for vertices in batch:
+        np.testing.assert_array_equal(vertices.min(axis=0), [-0.5, -0.5])
+        np.testing.assert_array_equal(vertices.max(axis=0), [0.5, 0.5])
+        assert Polygon(vertices).is_valid and orient(Polygon(vertices), sign=1.0).equals_exact(Polygon(vertices), 0)
+    np.testing.assert_array_equal(np.concatenate(batch), np.concatenate(texels(kind, 40, 5)))
+    distinct = {vertices.tobytes() for vertices in batch}
+    if kind in ("rectangle", "ellipse"):
+        assert len(distinct) == 1
+    elif kind == "regular_polygon":  # 6 side counts, few square-box placements each (texel's Notes)
+        assert 10 <= len(distinct) < 40
+    else:
+        assert len(distinct) == 40
+    np.testing.assert_array_equal(texel(kind, 3), texels(kind, 1, 3)[0])
+    assert texels(kind, 0, 1) == []
+
+
+@pytest.mark.parametrize("count", [-1, 2.5, True])
+def test_texels_rejects_bad_counts(count):
+    with pytest.raises(ValueError, match="count"):
+        texels("triangle", count, 0)

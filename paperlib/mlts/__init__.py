@@ -39,7 +39,7 @@ from .basic import (
 from .layers import Layer
 from .raster import coverage, paint, render_polygons
 from .render import load_palette, render, render_structure
-from .sampler import MLObject, Structure, sample_structure
+from .sampler import MLObject, Structure, rule_violations, sample_structure
 from .script import RenderSettings, Script, sample_script
 from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel
 
@@ -48,6 +48,6 @@ __all__ = [
     "affine_objects", "barnsley_fern", "box_counting_dimension", "coverage", "dead_leaves", "dead_leaves_coverage",
     "dead_leaves_coverage_std", "dead_leaves_mean_area", "dead_leaves_window_area", "ifs_chaos_game", "ifs_fractal",
     "load_palette", "object_diameter", "orientation_angle", "paint", "poisson_line_tessellation", "render",
-    "render_polygons", "render_structure", "sample_script", "sample_structure", "sierpinski_triangle", "texel",
+    "render_polygons", "render_structure", "rule_violations", "sample_script", "sample_structure", "sierpinski_triangle", "texel",
     "voronoi_tessellation",
 ]

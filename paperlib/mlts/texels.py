@@ -14,7 +14,7 @@ differently, so a regular polygon keeps equal sides, a triangle its angles and a
 polygon its convexity. This is possible because every bounded shape has a rotation whose
 bounding box is a square: the difference width - height changes sign when the shape turns by
 a quarter turn (width and height swap), so it vanishes in between (intermediate value
-theorem); it is solved in closed form (with :func:`scipy.optimize.brentq` as a fallback),
+theorem); it is solved in closed form (with bisection as a fallback), for many texels at once,
 and a last per-axis rescaling of relative size ~1e-15 makes the box exact. The texel's "own proportions" (aspect 1) are
 therefore those of a square box, and :func:`affine_object`'s aspect ratio elongates it.
 
@@ -24,7 +24,7 @@ with positive shoelace area (counter-clockwise as shapely's ``orient(sign=1.0)``
 coordinates); randomness through ``rng`` (``None``, an int or a Generator).
 
 Written by hand: the texel generators and the affine map are a few lines of NumPy; the
-convex hull comes from SciPy and the fallback root finding from :func:`scipy.optimize.brentq`.
+convex hull comes from SciPy.
 
 References
 ----------
@@ -39,7 +39,6 @@ import functools
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 from scipy.spatial import ConvexHull
 from scipy.spatial.distance import pdist
 
@@ -55,6 +54,7 @@ __all__ = [
     "orientation_angle",
     "orientation_angles",
     "texel",
+    "texels",
 ]
 
 #: Texel kinds of section 3 and Fig. 12, in the order the paper lists them.
@@ -78,8 +78,10 @@ RANDOM_SHAPE_HARMONICS = (2, 5)
 RANDOM_SHAPE_AMPLITUDE = (0.2, 0.6)
 #: Rotations tried at once to bracket the square-box rotation within a quarter turn.
 SQUARE_BOX_GRID = 17
-#: Closed-form refinements of the square-box rotation before falling back to root finding.
+#: Closed-form refinements of the square-box rotation before falling back to bisection.
 MAX_SINUSOID_STEPS = 4
+#: Bisection steps of the fallback: a bracket of a sixteenth turn shrinks to rounding level in < 60.
+BISECTION_STEPS = 64
 
 _QUARTER_TURN_GRID = np.linspace(0.0, 0.5 * math.pi, SQUARE_BOX_GRID)
 
@@ -136,7 +138,7 @@ def texel(kind: str, rng=None, *, n_vertices: int | None = None) -> np.ndarray:
     multiple of 4 this is a continuum; other regular polygons have only a few square-box
     placements up to symmetry (4 for odd side counts, 2 for 6 or 10 sides), and the draw picks
     among them. The object's orientation in the image is set by :func:`affine_object`'s angle
-    anyway.
+    anyway. ``texel(kind, rng)`` is ``texels(kind, 1, rng)[0]``.
 
     References
     ----------
@@ -144,14 +146,36 @@ def texel(kind: str, rng=None, *, n_vertices: int | None = None) -> np.ndarray:
     ellipses, and convex polygons") and Fig. 12 (random shapes, regular polygons, ellipses,
     triangles).
     """
+    return texels(kind, 1, rng, n_vertices=n_vertices)[0]
+
+
+def texels(kind: str, count: int, rng=None, *, n_vertices: int | None = None) -> list[np.ndarray]:
+    """``count`` independent texels of one kind, drawn together (the sampler's fast path).
+
+    Each is distributed as :func:`texel` describes; drawing them in one call vectorises the
+    random draws and the square-box normalisation over texels of equal vertex count.
+
+    Returns
+    -------
+    list of numpy.ndarray, each (k, 2)
+        The texels, in draw order (vertex counts may differ for regular and convex polygons).
+
+    Raises
+    ------
+    ValueError
+        Unknown ``kind``, a vertex count the kind does not accept, or a negative ``count``.
+    """
     if kind not in TEXELS:
         raise ValueError(f"unknown texel kind {kind!r}; choose among {TEXELS}")
     n_vertices = _vertex_count(kind, n_vertices)
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
+        raise ValueError(f"count must be a non-negative integer, got {count!r}")
     if kind in ("rectangle", "ellipse"):
-        return _fixed_texel(kind, n_vertices).copy()
+        fixed = _fixed_texel(kind, n_vertices)
+        return [fixed.copy() for _ in range(count)]
     rng = np.random.default_rng(rng)
-    raw = _RANDOM_GENERATORS[kind](rng, n_vertices)
-    return _normalised(raw, rng.uniform(0.0, 2.0 * math.pi))
+    raw = _RANDOM_GENERATORS[kind](rng, int(count), n_vertices)
+    return _normalised_all(raw, rng.uniform(0.0, 2.0 * math.pi, size=count))
 
 
 @functools.lru_cache(maxsize=64)
@@ -159,7 +183,7 @@ def _fixed_texel(kind: str, n_vertices: int | None) -> np.ndarray:
     """The texels that draw nothing, computed once per vertex count."""
     if kind == "rectangle":
         return np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
-    return _normalised(_regular_polygon(n_vertices or DEFAULT_SMOOTH_VERTICES), 0.0)
+    return _normalised_all([_regular_polygon(n_vertices or DEFAULT_SMOOTH_VERTICES)], np.zeros(1))[0]
 
 
 def _vertex_count(kind: str, n_vertices) -> int | None:
@@ -180,23 +204,32 @@ def _regular_polygon(n_sides: int) -> np.ndarray:
     return 0.5 * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
-def _random_triangle(rng: np.random.Generator, n_vertices) -> np.ndarray:
+def _random_triangles(rng: np.random.Generator, count: int, n_vertices) -> np.ndarray:
     # Uniform on the simplex of angle triples with every angle >= the minimum: no rejection loop.
     smallest = math.radians(MIN_TRIANGLE_ANGLE)
-    alpha, beta, _ = smallest + (math.pi - 3.0 * smallest) * rng.dirichlet(np.ones(3))
+    angles = smallest + (math.pi - 3.0 * smallest) * rng.dirichlet(np.ones(3), size=count)
+    alpha, beta = angles[:, 0], angles[:, 1]
     # Base (0,0)-(1,0); the apex follows from the base angles (law of sines).
-    side = math.sin(beta) / math.sin(alpha + beta)
-    return np.array([[0.0, 0.0], [1.0, 0.0], [side * math.cos(alpha), side * math.sin(alpha)]])
+    side = np.sin(beta) / np.sin(alpha + beta)
+    triangles = np.zeros((count, 3, 2))
+    triangles[:, 1, 0] = 1.0
+    triangles[:, 2, 0], triangles[:, 2, 1] = side * np.cos(alpha), side * np.sin(alpha)
+    return triangles
 
 
-def _random_regular_polygon(rng: np.random.Generator, n_vertices) -> np.ndarray:
+def _random_regular_polygons(rng: np.random.Generator, count: int, n_vertices) -> list[np.ndarray]:
     low, high = REGULAR_SIDES
-    return _regular_polygon(n_vertices or int(rng.integers(low, high + 1)))
+    sides = np.full(count, n_vertices) if n_vertices else rng.integers(low, high + 1, size=count)
+    return [_regular_polygon(int(n_sides)) for n_sides in sides]
 
 
-def _random_convex_polygon(rng: np.random.Generator, n_vertices) -> np.ndarray:
+def _random_convex_polygons(rng: np.random.Generator, count: int, n_vertices) -> list[np.ndarray]:
     low, high = CONVEX_POINTS
-    n_points = n_vertices or int(rng.integers(low, high + 1))
+    sizes = np.full(count, n_vertices) if n_vertices else rng.integers(low, high + 1, size=count)
+    return [_random_convex_polygon(rng, int(n_points)) for n_points in sizes]
+
+
+def _random_convex_polygon(rng: np.random.Generator, n_points: int) -> np.ndarray:
     for _ in range(MAX_CONVEX_DRAWS):
         points = rng.uniform(-0.5, 0.5, size=(n_points, 2))
         hull = ConvexHull(points)  # 2-D hulls list their vertices counter-clockwise, no collinear ones
@@ -206,25 +239,27 @@ def _random_convex_polygon(rng: np.random.Generator, n_vertices) -> np.ndarray:
     raise ValueError(f"no convex polygon of useful area from {n_points} points in {MAX_CONVEX_DRAWS} draws")
 
 
-def _random_star_shape(rng: np.random.Generator, n_vertices) -> np.ndarray:
+def _random_star_shapes(rng: np.random.Generator, count: int, n_vertices) -> np.ndarray:
     n_vertices = n_vertices or DEFAULT_SMOOTH_VERTICES
     low, high = RANDOM_SHAPE_HARMONICS
-    orders = np.arange(1, int(rng.integers(low, high + 1)) + 1)
+    orders = np.arange(1, high + 1)
+    used = orders[None, :] <= rng.integers(low, high + 1, size=count)[:, None]  # harmonics 1..J of each shape
     # Amplitudes decay like 1/j so the outline stays smooth; their sum stays below 1 so r > 0.
-    weights = rng.uniform(0.0, 1.0, size=orders.size) / orders
-    amplitudes = weights / weights.sum() * rng.uniform(*RANDOM_SHAPE_AMPLITUDE)
-    phases = rng.uniform(0.0, 2.0 * math.pi, size=orders.size)
+    weights = np.where(used, rng.uniform(0.0, 1.0, size=(count, high)) / orders, 0.0)
+    amplitudes = weights / weights.sum(axis=1, keepdims=True) * rng.uniform(*RANDOM_SHAPE_AMPLITUDE, size=(count, 1))
+    phases = rng.uniform(0.0, 2.0 * math.pi, size=(count, high))
     phi = 2.0 * math.pi * np.arange(n_vertices) / n_vertices
-    radius = 1.0 + (amplitudes * np.cos(np.outer(phi, orders) + phases)).sum(axis=1)
+    waves = np.cos(phi[None, :, None] * orders[None, None, :] + phases[:, None, :])  # (count, k, J)
+    radius = 1.0 + np.einsum("nkj,nj->nk", waves, amplitudes)
     # Positive radius at strictly increasing angles: a star-shaped, hence simple, polygon.
-    return radius[:, None] * np.column_stack([np.cos(phi), np.sin(phi)])
+    return radius[:, :, None] * np.stack([np.cos(phi), np.sin(phi)], axis=-1)[None]
 
 
 _RANDOM_GENERATORS = {
-    "triangle": _random_triangle,
-    "regular_polygon": _random_regular_polygon,
-    "convex_polygon": _random_convex_polygon,
-    "random_shape": _random_star_shape,
+    "triangle": _random_triangles,
+    "regular_polygon": _random_regular_polygons,
+    "convex_polygon": _random_convex_polygons,
+    "random_shape": _random_star_shapes,
 }
 
 
@@ -233,72 +268,124 @@ def _rotated(vertices: np.ndarray, angle: float) -> np.ndarray:
     return vertices @ np.array([[cos, sin], [-sin, cos]])
 
 
-def _widths_minus_heights(angles: np.ndarray, vertices: np.ndarray) -> np.ndarray:
-    """Bounding-box width - height of ``vertices`` rotated by each of ``angles``."""
+def _rotated_all(vertices: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Each of ``vertices`` (n, k, 2) rotated by its angle (n,) (counter-clockwise as x right, y up)."""
     cos, sin = np.cos(angles)[:, None], np.sin(angles)[:, None]
-    x, y = vertices[:, 0], vertices[:, 1]
+    x, y = vertices[..., 0], vertices[..., 1]
+    return np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
+
+
+def _box_differences(angles: np.ndarray, vertices: np.ndarray) -> np.ndarray:
+    """Bounding-box width - height of each shape (n, k, 2) rotated by each of its angles (n, g)."""
+    cos, sin = np.cos(angles)[:, :, None], np.sin(angles)[:, :, None]
+    x, y = vertices[:, None, :, 0], vertices[:, None, :, 1]
     rotated_x, rotated_y = cos * x - sin * y, sin * x + cos * y
-    return (rotated_x.max(axis=1) - rotated_x.min(axis=1)) - (rotated_y.max(axis=1) - rotated_y.min(axis=1))
+    return np.ptp(rotated_x, axis=2) - np.ptp(rotated_y, axis=2)
 
 
-def _width_minus_height(angle: float, vertices: np.ndarray) -> float:
-    return float(_widths_minus_heights(np.array([angle]), vertices)[0])
+def _widths_minus_heights(angles: np.ndarray, vertices: np.ndarray) -> np.ndarray:
+    """Bounding-box width - height of one shape ``vertices`` (k, 2) rotated by each of ``angles``."""
+    return _box_differences(np.asarray(angles, dtype=float)[None], np.asarray(vertices, dtype=float)[None])[0]
 
 
-def _extremes(vertices: np.ndarray, angle: float) -> np.ndarray:
-    """Indices of the vertices with largest and smallest x and y after rotation by ``angle``."""
-    rotated = _rotated(vertices, angle)
-    return np.concatenate([rotated.argmax(axis=0), rotated.argmin(axis=0)])
+def _extremes_all(vertices: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """(n, 4) indices of each shape's vertices with largest x, y then smallest x, y after rotation."""
+    rotated = _rotated_all(vertices, angles)
+    return np.concatenate([rotated.argmax(axis=1), rotated.argmin(axis=1)], axis=1)
 
 
-def _sinusoid_root(vertices: np.ndarray, extremes: np.ndarray, low: float, high: float) -> float | None:
-    """Root in [low, high] of width - height while the extreme vertices stay ``extremes``.
+def _sinusoid_roots(vertices: np.ndarray, extremes: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """Roots in [low, high] of width - height while the extreme vertices stay ``extremes`` (NaN: none).
 
     With fixed extreme vertices, width - height = P cos(t) - Q sin(t), zero at atan2(P, Q) + k pi.
     """
-    dx_w, dy_w = vertices[extremes[0]] - vertices[extremes[2]]  # x extent: max x vertex - min x vertex
-    dx_h, dy_h = vertices[extremes[1]] - vertices[extremes[3]]  # y extent: max y vertex - min y vertex
-    root = math.atan2(dx_w - dy_h, dy_w + dx_h)
-    root += math.pi * round((0.5 * (low + high) - root) / math.pi)
-    return root if low <= root <= high else None
+    rows = np.arange(len(vertices))[:, None]
+    picked = vertices[rows, extremes]  # (n, 4, 2): max x, max y, min x, min y vertices
+    dx_w, dy_w = (picked[:, 0] - picked[:, 2]).T  # x extent: max x vertex - min x vertex
+    dx_h, dy_h = (picked[:, 1] - picked[:, 3]).T  # y extent: max y vertex - min y vertex
+    root = np.arctan2(dx_w - dy_h, dy_w + dx_h)
+    root += math.pi * np.round((0.5 * (low + high) - root) / math.pi)
+    return np.where((low <= root) & (root <= high), root, np.nan)
+
+
+def _square_box_angles(vertices: np.ndarray, start_angles: np.ndarray) -> np.ndarray:
+    """First rotation of each shape (n, k, 2) after its start angle (within a quarter turn) giving a square box.
+
+    A quarter turn swaps width and height, so width - height changes sign on the grid below;
+    in the bracket the root is solved in closed form (:func:`_sinusoid_roots`), checked, and
+    found by bisection (:func:`_bisected_roots`) in the rare case the extreme vertices keep changing.
+    """
+    grid = start_angles[:, None] + _QUARTER_TURN_GRID[None, :]
+    differences = _box_differences(grid, vertices)
+    changed = np.sign(differences[:, 1:]) != np.sign(differences[:, :1])
+    first = changed.argmax(axis=1)
+    rows = np.arange(len(vertices))
+    low, high = grid[rows, first], grid[rows, first + 1]
+    angles = np.full(len(vertices), np.nan)
+    # exact zeros on the grid; no sign change: width - height is at rounding level everywhere (a square)
+    angles = np.where(differences[:, 0] == 0.0, start_angles, angles)
+    flat = ~changed.any(axis=1) & np.isnan(angles)
+    angles[flat] = grid[flat, np.argmin(np.abs(differences[flat]), axis=1)]
+    on_grid = np.isnan(angles) & (differences[rows, first + 1] == 0.0)
+    angles[on_grid] = high[on_grid]
+    open_rows = np.flatnonzero(np.isnan(angles))
+    guess = 0.5 * (low + high)
+    for _ in range(MAX_SINUSOID_STEPS):
+        if not open_rows.size:
+            break
+        shapes = vertices[open_rows]
+        extremes = _extremes_all(shapes, guess[open_rows])
+        roots = _sinusoid_roots(shapes, extremes, low[open_rows], high[open_rows])
+        found = ~np.isnan(roots)
+        settled = found.copy()
+        settled[found] = np.all(_extremes_all(shapes[found], roots[found]) == extremes[found], axis=1)
+        angles[open_rows[settled]] = roots[settled]
+        guess[open_rows[found]] = roots[found]
+        open_rows = open_rows[found & ~settled]  # no root in the bracket: straight to bisection
+    rest = np.flatnonzero(np.isnan(angles))
+    if rest.size:
+        angles[rest] = _bisected_roots(vertices[rest], low[rest], high[rest])
+    return angles
+
+
+def _bisected_roots(vertices: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+    """Roots of width - height in brackets [low, high] where it changes sign, by bisection to rounding level."""
+    low, high = low.copy(), high.copy()
+    low_sign = np.sign(_box_differences(low[:, None], vertices)[:, 0])
+    for _ in range(BISECTION_STEPS):
+        middle = 0.5 * (low + high)
+        middle_sign = np.sign(_box_differences(middle[:, None], vertices)[:, 0])
+        same = middle_sign == low_sign
+        low, high = np.where(same, middle, low), np.where(same, high, middle)
+        if np.all((high - low) <= np.spacing(np.abs(high))) or np.all(middle_sign == 0):
+            break
+    return 0.5 * (low + high)
 
 
 def _square_box_angle(vertices: np.ndarray, start_angle: float) -> float:
-    """First rotation after ``start_angle`` (within a quarter turn) giving a square bounding box.
+    """:func:`_square_box_angles` of one shape (k, 2)."""
+    return float(_square_box_angles(np.asarray(vertices, dtype=float)[None], np.array([start_angle]))[0])
 
-    A quarter turn swaps width and height, so width - height changes sign on the grid below;
-    in the bracket the root is solved in closed form (:func:`_sinusoid_root`), checked, and
-    found by :func:`scipy.optimize.brentq` in the rare case the extreme vertices keep changing.
+
+def _normalised_all(shapes, start_angles: np.ndarray) -> list[np.ndarray]:
+    """Each shape by a similarity onto a square box, then rescaled so the box is exactly [-0.5, 0.5]^2.
+
+    Shapes of equal vertex count are normalised together.
     """
-    angles = start_angle + _QUARTER_TURN_GRID
-    differences = _widths_minus_heights(angles, vertices)
-    if differences[0] == 0.0:
-        return start_angle
-    changed = np.flatnonzero(np.sign(differences[1:]) != np.sign(differences[0]))
-    if changed.size == 0:  # width - height is at rounding level everywhere (e.g. a square)
-        return float(angles[np.argmin(np.abs(differences))])
-    low, high = float(angles[changed[0]]), float(angles[changed[0] + 1])
-    if differences[changed[0] + 1] == 0.0:
-        return high
-    angle = 0.5 * (low + high)
-    for _ in range(MAX_SINUSOID_STEPS):
-        extremes = _extremes(vertices, angle)
-        root = _sinusoid_root(vertices, extremes, low, high)
-        if root is None:
-            break
-        if np.array_equal(_extremes(vertices, root), extremes):
-            return root
-        angle = root
-    return brentq(_width_minus_height, low, high, args=(vertices,), xtol=1e-15, maxiter=200)
-
-
-def _normalised(vertices: np.ndarray, start_angle: float) -> np.ndarray:
-    """``vertices`` by a similarity onto a square box, then rescaled so the box is exactly [-0.5, 0.5]^2."""
-    rotated = _rotated(vertices, _square_box_angle(vertices, start_angle))
-    low, high = rotated.min(axis=0), rotated.max(axis=0)
-    # (x - low) / (high - low) is exactly 0 at the minimum and exactly 1 at the maximum.
-    # Rotation and positive scaling keep the generators' counter-clockwise order.
-    return (rotated - low) / (high - low) - 0.5
+    shapes = list(shapes)
+    result = [None] * len(shapes)
+    counts = np.array([len(shape) for shape in shapes])
+    for count in np.unique(counts):
+        rows = np.flatnonzero(counts == count)
+        group = np.stack([shapes[row] for row in rows])
+        rotated = _rotated_all(group, _square_box_angles(group, start_angles[rows]))
+        low, high = rotated.min(axis=1, keepdims=True), rotated.max(axis=1, keepdims=True)
+        # (x - low) / (high - low) is exactly 0 at the minimum and exactly 1 at the maximum.
+        # Rotation and positive scaling keep the generators' counter-clockwise order.
+        normalised = (rotated - low) / (high - low) - 0.5
+        for row, shape in zip(rows, normalised):
+            result[row] = shape
+    return result
 
 
 # ---------------------------------------------------------------------------------------------
