@@ -1,4 +1,4 @@
-"""Alvarez 2015 MLTS: about 3,000 objects with inclusion and exclusion at 1024 x 1024.
+"""Alvarez 2015 MLTS: about 3,000 objects with inclusion and exclusion at 1024 x 1024, and the scaling curve.
 
 "mlts: structure + render, ~3,000 objects, 1024x1024": three layers under the image rectangle
 (made in the timed call from a fixed configuration, seed 0):
@@ -11,8 +11,16 @@ then rendered with the chelsea palette, transparency up to 0.5, a light spot at 
 anti-aliasing samples. Paper: about 3,000 objects "in less than 5 s on a laptop"; target (issue 6):
 <= 0.5 s for geometry and rendering. Baseline, same run: the rendering alone of the same
 structure, so the ratio shows how the time splits.
+
+"mlts: scaling at constant density": the same three layers on a square image whose area grows
+with the number of objects (side 1024 * sqrt(n / 3000), the first layer's ``Max_O`` 40 * n / 3000),
+for about n = 3,000 to 30,000 objects. Issue 6 asks that it stay near-linear. Baseline, same
+run: the 3,000-object texture made n / 3000 times, i.e. perfectly linear scaling; a ratio near 1
+is linear, above 1 is the super-linear part.
 """
 
+import math
+from dataclasses import replace
 from functools import cache
 
 from paperlib.mlts import Layer, RenderSettings, render_structure, sample_structure
@@ -43,3 +51,31 @@ def render_only(side):
            baseline_name="rendering alone, same structure", reference={1024: {"Alvarez 2015 (paper, laptop)": 5.0}})
 def structure_and_render(side):
     return lambda: render_structure(sample_structure(LAYERS, side, side, seed=0), SETTINGS)
+
+
+SCALING_OBJECTS = [3000, 7500, 15000, 30000]
+
+
+def scaled(objects):
+    """The benchmark's layers on a larger image at the same density: (layers, side)."""
+    factor = objects / 3000
+    layers = (replace(LAYERS[0], max_objects=round(LAYERS[0].max_objects * factor)),) + LAYERS[1:]
+    return layers, round(1024 * math.sqrt(factor))
+
+
+def make_texture(layers, side):
+    return render_structure(sample_structure(layers, side, side, seed=0), SETTINGS)
+
+
+def linear_reference(objects):
+    def run():
+        for _ in range(round(objects / 3000)):
+            make_texture(LAYERS, 1024)
+    return run
+
+
+@benchmark("mlts: scaling at constant density (n objects)", sizes=SCALING_OBJECTS, baseline=linear_reference,
+           baseline_name="the 3,000-object texture n/3000 times (linear)")
+def scaling(objects):
+    layers, side = scaled(objects)
+    return lambda: make_texture(layers, side)

@@ -263,14 +263,14 @@ def test_resolution_in_order_equals_the_one_by_one_rule():
     assert (chosen >= 0).sum() < n_objects  # some objects found no room: the check can fail
 
 
-def test_probe_vertices_only_skip_trials_that_inclusion_rejects(monkeypatch):
-    """The cheap pre-test is a necessary condition: without it the structure is the same bit for bit."""
-    layers = (Layer(texels=("triangle", "convex_polygon"), max_objects=12, max_diameter=60, exclusion=True),
+def test_probe_vertices_only_skip_trials_that_the_rules_reject(monkeypatch):
+    """The cheap pre-tests are necessary conditions: without them the structure is the same bit for bit."""
+    layers = (Layer(texels=("triangle", "convex_polygon"), max_objects=40, max_diameter=60, exclusion=True),
               Layer(texels=("random_shape", "ellipse"), max_objects=6, max_diameter=25, inclusion=True,
                     exclusion=True, aspect_ratio=2.0),
               Layer(texels=("random_shape",), max_objects=4, max_diameter=12, inclusion=True))
     fast = sample_structure(layers, 200, 160, seed=11)
-    monkeypatch.setattr(sampler, "_probes_inside", lambda slots, rows, *args: np.ones(len(rows), dtype=bool))
+    monkeypatch.setattr(sampler, "_probe_test", lambda slots, rows, *args: np.ones(len(rows), dtype=bool))
     slow = sample_structure(layers, 200, 160, seed=11)
     assert len(fast.objects) == len(slow.objects) and fast.placed[3] > 0
     for a, b in zip(fast.objects, slow.objects):
@@ -315,3 +315,12 @@ def test_rule_violations_counts_what_shapely_sees():
     assert rule_violations(relabelled)["inclusion"] == outside
     with pytest.raises(ValueError, match="Structure"):
         rule_violations("structure")
+
+
+def test_blocks_of_objects_keep_the_rules(monkeypatch):
+    monkeypatch.setattr(sampler, "ROUND_TRIALS", 50)  # a few objects per block
+    layers = (Layer(texels=("ellipse", "triangle"), max_objects=60, max_diameter=30, exclusion=True),
+              Layer(texels=("rectangle",), max_objects=7, max_diameter=12, inclusion=True, exclusion=True))
+    structure = sample_structure(layers, 150, 150, seed=3)
+    assert structure.placed[1] > 20 and structure.placed[2] > 20
+    assert rule_violations(structure)["exclusion"] == 0 and rule_violations(structure)["inclusion"] == 0

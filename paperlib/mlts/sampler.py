@@ -57,6 +57,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
+import skimage.draw
 from shapely.geometry import Polygon
 
 from .layers import Layer
@@ -66,12 +67,18 @@ __all__ = ["MLObject", "Structure", "rule_violations", "sample_structure"]
 
 #: Trials drawn at once per object in a layer without exclusion (most objects need only the first few).
 TRIAL_CHUNK = 4
-#: Rejection rounds for a centre inside a father before the trial fails (round k draws 2**k points,
-#: at most 1024: only slivers of less than ~1e-5 of their bounding box ever get to the end).
+#: Rejection rounds for a centre inside a father before the trial fails (round k draws 2**k points
+#: per centre, at most MAX_CENTRE_DRAWS and CENTRE_POINTS in all: only slivers of less than ~1e-5
+#: of their bounding box ever get to the end).
 MAX_CENTRE_ROUNDS = 24
+MAX_CENTRE_DRAWS = 1024
+CENTRE_POINTS = 2**20
 #: Vertices of each trial tested against the father before its polygon is built (inclusion layers):
 #: most trials of crowded layers fail there, at a fraction of the cost of building the polygon.
 PROBE_VERTICES = 8
+#: Trials drawn and tested together at most (objects per block: this over Max_T); bounds the memory
+#: of very large layers.
+ROUND_TRIALS = 32768
 
 
 @dataclass(frozen=True)
@@ -232,7 +239,7 @@ def _centres_in_fathers(slots: _Slots, rows: np.ndarray, rng: np.random.Generato
     for attempt in range(MAX_CENTRE_ROUNDS):
         if not missing.size:
             break
-        draws = 2 ** min(attempt, 10)
+        draws = max(1, min(2**attempt, MAX_CENTRE_DRAWS, CENTRE_POINTS // len(missing)))
         x0, y0, x1, y1 = (np.repeat(column, draws) for column in bounds[missing].T)
         xs, ys = rng.uniform(x0, x1), rng.uniform(y0, y1)
         inside = shapely.contains_xy(np.repeat(slots.father_shapes[rows[missing]], draws), xs, ys)
@@ -278,12 +285,30 @@ def _affine_map(points: np.ndarray, sizes, aspect: float, angles, centres) -> np
     return np.stack([cos * x - sin * y + centres[..., 0], sin * x + cos * y + centres[..., 1]], axis=-1)
 
 
-def _probes_inside(slots: _Slots, rows, centres, sizes, aspect: float, angles) -> np.ndarray:
-    """Whether each trial's probe vertices all lie inside its father: necessary for inclusion, and cheap."""
-    probes = _affine_map(slots.probes[rows], sizes[:, None], aspect, angles[:, None], centres[:, None, :])
-    fathers = np.repeat(slots.father_shapes[rows], PROBE_VERTICES)
-    inside = shapely.contains_xy(fathers, probes[..., 0].ravel(), probes[..., 1].ravel())
-    return inside.reshape(len(rows), PROBE_VERTICES).all(axis=1)
+def _probe_test(slots: _Slots, rows, centres, sizes, aspect: float, angles, inclusion: bool,
+                occupancy: "_Occupancy | None") -> np.ndarray:
+    """Whether each trial's probe vertices pass the cheap pre-tests, tested one vertex at a time.
+
+    A trial fails as soon as a probe vertex lies outside its father (inclusion) or strictly
+    inside an object already placed (``occupancy``, exclusion): both are necessary conditions
+    of the full test, so no trial the rules would keep is lost. Most failing trials of a crowded
+    layer fail at the first vertex, so the later ones are tested on few trials.
+    """
+    passing = np.ones(len(rows), dtype=bool)
+    active = np.arange(len(rows))
+    for vertex in range(PROBE_VERTICES):
+        if not active.size:
+            break
+        point = _affine_map(slots.probes[rows[active], vertex], sizes[active], aspect, angles[active],
+                            centres[active])
+        ok = np.ones(len(active), dtype=bool)
+        if inclusion:
+            ok = shapely.contains_xy(slots.father_shapes[rows[active]], point[:, 0], point[:, 1])
+        if occupancy is not None:
+            ok[ok] = ~occupancy.inside(point[ok])
+        passing[active[~ok]] = False
+        active = active[ok]
+    return passing
 
 
 def _polygons(slots: _Slots, rows, centres, sizes, aspect: float, angles):
@@ -297,8 +322,13 @@ def _polygons(slots: _Slots, rows, centres, sizes, aspect: float, angles):
     return vertices, offsets, shapes
 
 
-def _candidates(slots: _Slots, rows, layer: Layer, diameter: float, points, fars, rng) -> _Candidates:
-    """One trial placement per entry of ``rows`` at ``diameter`` (before the vanishing-point factor)."""
+def _candidates(slots: _Slots, rows, layer: Layer, diameter: float, points, fars, rng,
+                occupancy: "_Occupancy | None" = None) -> _Candidates:
+    """One trial placement per entry of ``rows`` at ``diameter`` (before the vanishing-point factor).
+
+    Polygons are built only for the trials that pass the cheap pre-tests: probe vertices inside
+    the father (inclusion) and none inside an object already placed (``occupancy``, exclusion).
+    """
     centres, keeps = _centres_in_fathers(slots, rows, rng)
     targets = rng.integers(2, size=len(rows))
     for target, point in enumerate(points):
@@ -307,9 +337,10 @@ def _candidates(slots: _Slots, rows, layer: Layer, diameter: float, points, fars
     centres[~keeps] = slots.father_bounds[rows[~keeps], :2] + (1.0, 0.0)  # any point off V_0, V_1 (never kept)
     angles, factors = _orientations(centres, targets, points, fars, layer.vanishing)
     sizes = diameter * factors
-    if layer.inclusion and keeps.any():
-        keeps[keeps] = _probes_inside(slots, rows[keeps], centres[keeps], sizes[keeps], layer.aspect_ratio,
-                                      angles[keeps])
+    if (layer.inclusion or occupancy is not None) and keeps.any():
+        kept = np.flatnonzero(keeps)
+        keeps[kept] = _probe_test(slots, rows[kept], centres[kept], sizes[kept], layer.aspect_ratio, angles[kept],
+                                  layer.inclusion, occupancy)
     built = np.flatnonzero(keeps)
     vertices, offsets, built_shapes = _polygons(slots, rows[built], centres[built], sizes[built],
                                                 layer.aspect_ratio, angles[built])
@@ -320,6 +351,50 @@ def _candidates(slots: _Slots, rows, layer: Layer, diameter: float, points, fars
     if layer.inclusion and built.size:
         keeps[built] = shapely.contains_properly(slots.father_shapes[rows[built]], built_shapes)
     return _Candidates(rows, centres, sizes, angles, keeps, built, vertices, offsets, shapes, position)
+
+
+class _Occupancy:
+    """The objects placed so far in an exclusion layer: their STRtree and a pixel map of which covers what.
+
+    ``labels[row, col]`` is the object covering pixel (row, col)'s centre (-1: none; objects of
+    an exclusion layer do not overlap). A trial with a vertex strictly inside a placed object
+    intersects it, so :meth:`inside` rejects it before its polygon is built: the pixel map
+    names the one object to test each vertex against (shapely ``contains_xy``), so the test is
+    exact, never rejecting a trial the full test would keep.
+    """
+
+    def __init__(self, width: int, height: int):
+        self.labels = np.full((height, width), -1, dtype=np.int64)
+        self.shapes: list = []
+        self.shapes_array = np.zeros(0, dtype=object)
+        self._tree = None
+
+    def add(self, shapes: list, polygons: list) -> None:
+        shapely.prepare(shapes)  # many point tests per object follow
+        for shape, polygon in zip(shapes, polygons):
+            rows, cols = skimage.draw.polygon(polygon[:, 1] - 0.5, polygon[:, 0] - 0.5, self.labels.shape)
+            self.labels[rows, cols] = len(self.shapes)
+            self.shapes.append(shape)
+        self.shapes_array = np.array(self.shapes, dtype=object)
+        self._tree = None
+
+    def tree(self) -> shapely.STRtree:
+        if self._tree is None:
+            self._tree = shapely.STRtree(self.shapes)
+        return self._tree
+
+    def inside(self, points: np.ndarray) -> np.ndarray:
+        """Whether each point (m, 2) lies strictly inside a placed object."""
+        x, y = points[:, 0], points[:, 1]
+        height, width = self.labels.shape
+        on_image = (x >= 0) & (x < width) & (y >= 0) & (y < height)
+        owner = np.full(len(x), -1, dtype=np.int64)
+        owner[on_image] = self.labels[y[on_image].astype(np.int64), x[on_image].astype(np.int64)]
+        covered = np.flatnonzero(owner >= 0)
+        inside = np.zeros(len(x), dtype=bool)
+        if covered.size:
+            inside[covered] = shapely.contains_xy(self.shapes_array[owner[covered]], x[covered], y[covered])
+        return inside
 
 
 # ---------------------------------------------------------------------------- placement
@@ -350,18 +425,18 @@ def _independent_round(slots, pending, layer, diameter, points, fars, rng):
     return chosen, pending
 
 
-def _exclusion_round(slots, pending, layer, diameter, placed_shapes, points, fars, rng):
+def _exclusion_round(slots, pending, layer, diameter, occupancy: _Occupancy, points, fars, rng):
     """Trials of one diameter under exclusion: pending objects in order, each against everything placed.
 
     All ``Max_T`` trials of every pending object are drawn together; their intersections with the
-    objects of earlier rounds come from one STRtree query, and the objects of this round are
-    resolved in order by :func:`_resolve_in_order`.
+    objects placed before (``occupancy``) come from one STRtree query, and the objects of this
+    round are resolved in order by :func:`_resolve_in_order`.
     """
     trials = layer.max_trials
-    candidates = _candidates(slots, np.repeat(pending, trials), layer, diameter, points, fars, rng)
+    candidates = _candidates(slots, np.repeat(pending, trials), layer, diameter, points, fars, rng, occupancy)
     alive = candidates.keeps.copy()
-    if placed_shapes and alive.any():
-        hits, _ = shapely.STRtree(placed_shapes).query(candidates.shapes[alive], predicate="intersects")
+    if occupancy.shapes and alive.any():
+        hits, _ = occupancy.tree().query(candidates.shapes[alive], predicate="intersects")
         alive[np.flatnonzero(alive)[hits]] = False
     chosen = _resolve_in_order(candidates.shapes, alive, trials)
     placed = chosen >= 0
@@ -373,52 +448,55 @@ def _resolve_in_order(shapes: np.ndarray, alive: np.ndarray, trials: int) -> np.
     """Object i (trials ``i * trials ...``) takes its first alive trial not intersecting an earlier choice.
 
     The sequential rule within a round, computed without testing every pair: a chosen shape
-    removes the later objects' alive trials that intersect it (bounding-box neighbours from one
-    STRtree query, then shapely ``intersects``). Returns the chosen candidate per object, -1 if none.
+    removes the later objects' alive trials that intersect it (one STRtree query per choice, so
+    the work follows the choices' neighbourhoods, never all pairs of trials). Returns the chosen
+    candidate per object, -1 if none.
     """
     alive = alive.copy()
-    later_neighbours = _later_box_neighbours(shapes, alive, trials)
+    live = np.flatnonzero(alive)
+    tree = shapely.STRtree(shapes[live]) if live.size else None
     chosen = np.full(len(alive) // trials, -1, dtype=np.int64)
     for row in range(len(chosen)):
         group = alive[row * trials:(row + 1) * trials]
         if not group.any():
             continue
         chosen[row] = index = row * trials + int(group.argmax())
-        neighbours = later_neighbours(index)
-        neighbours = neighbours[alive[neighbours]]
-        if neighbours.size:
-            alive[neighbours[shapely.intersects(shapes[index], shapes[neighbours])]] = False
+        hits = live[tree.query(shapes[index], predicate="intersects")]
+        alive[hits[hits >= (row + 1) * trials]] = False  # later objects' trials only
     return chosen
 
 
-def _later_box_neighbours(shapes: np.ndarray, alive: np.ndarray, trials: int):
-    """A function: candidate -> the alive candidates of later objects whose bounding boxes meet its own."""
-    live = np.flatnonzero(alive)
-    if live.size < 2:
-        return lambda index: np.zeros(0, dtype=np.int64)
-    first, second = shapely.STRtree(shapes[live]).query(shapes[live])
-    first, second = live[first], live[second]
-    later = second // trials > first // trials
-    first, second = first[later], second[later]
-    order = np.argsort(first, kind="stable")
-    first, second = first[order], second[order]
-    return lambda index: second[np.searchsorted(first, index):np.searchsorted(first, index, side="right")]
+def _place_layer(layer: Layer, slots: _Slots, width: int, height: int, points, fars, rng) -> list:
+    """(slot, centre, size, angle, reductions, polygon, shape) of every placed object, in slot order.
 
-
-def _place_layer(layer: Layer, slots: _Slots, points, fars, rng) -> list:
-    """(slot, candidates, index, reductions) of every placed object, in slot order."""
+    Each round runs on blocks of at most ``ROUND_TRIALS / Max_T`` objects, in order, every block
+    against all objects placed before it: the same rule as one block (every object against
+    everything placed before it), with bounded memory.
+    """
     pending = np.arange(len(slots.fathers))
-    placed, placed_shapes = [], []
+    placed = []
+    occupancy = _Occupancy(width, height) if layer.exclusion else None
     diameter = layer.max_diameter
     for reductions in range(layer.max_reductions + 1):
+        waiting = []
+        block_size = max(1, ROUND_TRIALS // layer.max_trials)
+        for block in np.array_split(pending, max(1, -(-len(pending) // block_size))):
+            if not block.size:
+                continue
+            if occupancy is not None:
+                chosen, left = _exclusion_round(slots, block, layer, diameter, occupancy, points, fars, rng)
+            else:
+                chosen, left = _independent_round(slots, block, layer, diameter, points, fars, rng)
+            new = [(slot, candidates.centres[index].copy(), float(candidates.sizes[index]),
+                    float(candidates.angles[index]), reductions, candidates.polygon(index), candidates.shapes[index])
+                   for slot, candidates, index in chosen]
+            if occupancy is not None:
+                occupancy.add([item[6] for item in new], [item[5] for item in new])
+            placed += new
+            waiting.append(left)
+        pending = np.concatenate(waiting) if waiting else pending
         if not pending.size:
             break
-        if layer.exclusion:
-            chosen, pending = _exclusion_round(slots, pending, layer, diameter, placed_shapes, points, fars, rng)
-            placed_shapes += [candidates.shapes[index] for _, candidates, index in chosen]
-        else:
-            chosen, pending = _independent_round(slots, pending, layer, diameter, points, fars, rng)
-        placed += [(slot, candidates, index, reductions) for slot, candidates, index in chosen]
         diameter *= layer.size_reduction
     return sorted(placed, key=lambda item: item[0])
 
@@ -463,13 +541,12 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
         fars = [_far_distance(point, width, height) for point in points]
         slots = _layer_slots(layer, fathers, geometries, rng)
         children = []
-        for slot, candidates, index, reductions in _place_layer(layer, slots, points, fars, rng):
-            centre = (float(candidates.centres[index, 0]), float(candidates.centres[index, 1]))
+        placements = _place_layer(layer, slots, width, height, points, fars, rng)
+        for slot, centre, size, angle, reductions, polygon, shape in placements:
             children.append(len(objects))
-            objects.append(MLObject(number, int(slots.fathers[slot]), str(slots.kinds[slot]), centre,
-                                    float(candidates.sizes[index]), float(candidates.angles[index]), reductions,
-                                    candidates.polygon(index)))
-            geometries.append(candidates.shapes[index])
+            objects.append(MLObject(number, int(slots.fathers[slot]), str(slots.kinds[slot]),
+                                    (float(centre[0]), float(centre[1])), size, angle, reductions, polygon))
+            geometries.append(shape)
         tried.append(len(fathers) * layer.max_objects)  # degenerate fathers' children count as given up
         placed.append(len(children))
         fathers = children

@@ -82,6 +82,8 @@ SQUARE_BOX_GRID = 17
 MAX_SINUSOID_STEPS = 4
 #: Bisection steps of the fallback: a bracket of a sixteenth turn shrinks to rounding level in < 60.
 BISECTION_STEPS = 64
+#: Texels normalised together at most (the rotation grid holds 17 x vertices floats per texel).
+NORMALISE_CHUNK = 1024
 
 _QUARTER_TURN_GRID = np.linspace(0.0, 0.5 * math.pi, SQUARE_BOX_GRID)
 
@@ -376,16 +378,25 @@ def _normalised_all(shapes, start_angles: np.ndarray) -> list[np.ndarray]:
     result = [None] * len(shapes)
     counts = np.array([len(shape) for shape in shapes])
     for count in np.unique(counts):
-        rows = np.flatnonzero(counts == count)
-        group = np.stack([shapes[row] for row in rows])
-        rotated = _rotated_all(group, _square_box_angles(group, start_angles[rows]))
-        low, high = rotated.min(axis=1, keepdims=True), rotated.max(axis=1, keepdims=True)
-        # (x - low) / (high - low) is exactly 0 at the minimum and exactly 1 at the maximum.
-        # Rotation and positive scaling keep the generators' counter-clockwise order.
-        normalised = (rotated - low) / (high - low) - 0.5
-        for row, shape in zip(rows, normalised):
-            result[row] = shape
+        for rows in _chunks(np.flatnonzero(counts == count), NORMALISE_CHUNK):
+            _normalise_group(shapes, rows, start_angles, result)
     return result
+
+
+def _chunks(rows: np.ndarray, size: int) -> list[np.ndarray]:
+    return np.array_split(rows, max(1, -(-len(rows) // size)))
+
+
+def _normalise_group(shapes: list, rows: np.ndarray, start_angles: np.ndarray, result: list) -> None:
+    """:func:`_normalised_all` of shapes ``rows`` (all with the same vertex count), into ``result``."""
+    group = np.stack([shapes[row] for row in rows])
+    rotated = _rotated_all(group, _square_box_angles(group, start_angles[rows]))
+    low, high = rotated.min(axis=1, keepdims=True), rotated.max(axis=1, keepdims=True)
+    # (x - low) / (high - low) is exactly 0 at the minimum and exactly 1 at the maximum.
+    # Rotation and positive scaling keep the generators' counter-clockwise order.
+    normalised = (rotated - low) / (high - low) - 0.5
+    for row, shape in zip(rows, normalised):
+        result[row] = shape
 
 
 # ---------------------------------------------------------------------------------------------
