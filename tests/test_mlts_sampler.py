@@ -324,3 +324,13 @@ def test_blocks_of_objects_keep_the_rules(monkeypatch):
     structure = sample_structure(layers, 150, 150, seed=3)
     assert structure.placed[1] > 20 and structure.placed[2] > 20
     assert rule_violations(structure)["exclusion"] == 0 and rule_violations(structure)["inclusion"] == 0
+
+
+def test_changing_the_texels_keeps_the_placements_of_a_layer_without_rules():
+    ellipses = Layer(texels=("ellipse",), max_objects=25, max_diameter=20)
+    triangles = replace(ellipses, texels=("triangle", "random_shape"))
+    a = sample_structure([ellipses], 200, 200, seed=8).objects[1:]
+    b = sample_structure([triangles], 200, 200, seed=8).objects[1:]
+    assert [item.center for item in a] == [item.center for item in b]
+    assert [item.angle for item in a] == [item.angle for item in b]
+    assert {item.kind for item in b} == {"triangle", "random_shape"}

@@ -539,9 +539,12 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
     for number, layer in enumerate(layers, start=1):
         points = (layer.v0, layer.v1)
         fars = [_far_distance(point, width, height) for point in points]
-        slots = _layer_slots(layer, fathers, geometries, rng)
+        # texels and placements from separate streams: changing T(L_m) leaves the trials' centres and
+        # orientations as they were (Figs. 12 and 18 compare textures that differ only by shape)
+        texel_rng, placement_rng = rng.spawn(2)
+        slots = _layer_slots(layer, fathers, geometries, texel_rng)
         children = []
-        placements = _place_layer(layer, slots, width, height, points, fars, rng)
+        placements = _place_layer(layer, slots, width, height, points, fars, placement_rng)
         for slot, centre, size, angle, reductions, polygon, shape in placements:
             children.append(len(objects))
             objects.append(MLObject(number, int(slots.fathers[slot]), str(slots.kinds[slot]),
