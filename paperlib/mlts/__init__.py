@@ -1,13 +1,12 @@
 """Alvarez et al. 2015, abstract textures by a multi-layered texture sampler (MLTS).
 
-Done so far (issue 6 in progress):
-
 - :mod:`.texels`: the texels of section 3 (triangles, rectangles, ellipses, regular and random
   convex polygons, random shapes), objects as their affine images, orientation toward projective
   points;
 - :mod:`.layers`: every layer parameter of section 4 (:class:`Layer`);
 - :mod:`.sampler`: the multi-layered object structure of Definition 1 with inclusion and
-  exclusion by trials and diameter reductions (:func:`sample_structure`);
+  exclusion by trials and diameter reductions (:func:`sample_structure`), and an independent
+  count of rule breaches (:func:`rule_violations`);
 - :mod:`.raster`: the anti-aliased painter (occlusion, transparency, light spot, clipping to
   the father) in numba;
 - :mod:`.render`: section 5's rendering (palette from an image, transparency, light spot,
@@ -17,8 +16,7 @@ Done so far (issue 6 in progress):
 - :mod:`.basic`: the basic processes of Fig. 5 (scaling dead leaves, Voronoi and Poisson-line
   tessellations, IFS fractals).
 
-To come: the notebooks, the widget, the benchmarks, and a compiled placement loop (the sampler
-is correct but far from the paper's speed on crowded layers).
+The explorer widget is :func:`paperlib.widgets.mlts_explorer`.
 """
 
 from .basic import (
@@ -41,13 +39,13 @@ from .raster import coverage, paint, render_polygons
 from .render import load_palette, render, render_structure
 from .sampler import MLObject, Structure, rule_violations, sample_structure
 from .script import RenderSettings, Script, sample_script
-from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel
+from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel, texels
 
 __all__ = [
     "DEFAULT_PALETTE", "Layer", "MLObject", "RenderSettings", "Script", "Structure", "TEXELS", "affine_object",
     "affine_objects", "barnsley_fern", "box_counting_dimension", "coverage", "dead_leaves", "dead_leaves_coverage",
     "dead_leaves_coverage_std", "dead_leaves_mean_area", "dead_leaves_window_area", "ifs_chaos_game", "ifs_fractal",
     "load_palette", "object_diameter", "orientation_angle", "paint", "poisson_line_tessellation", "render",
-    "render_polygons", "render_structure", "rule_violations", "sample_script", "sample_structure", "sierpinski_triangle", "texel",
-    "voronoi_tessellation",
+    "render_polygons", "render_structure", "rule_violations", "sample_script", "sample_structure",
+    "sierpinski_triangle", "texel", "texels", "voronoi_tessellation",
 ]

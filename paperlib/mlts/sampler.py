@@ -61,7 +61,7 @@ import skimage.draw
 from shapely.geometry import Polygon
 
 from .layers import Layer
-from .texels import distances_to, orientation_angles, texels
+from .texels import affine_map, distances_to, orientation_angles, texels
 
 __all__ = ["MLObject", "Structure", "rule_violations", "sample_structure"]
 
@@ -274,17 +274,6 @@ def _orientations(centres, targets, points, fars, exponent: float):
     return angles, factors
 
 
-def _affine_map(points: np.ndarray, sizes, aspect: float, angles, centres) -> np.ndarray:
-    """Texel points (..., 2) scaled by (size, size / aspect), rotated by angle, moved to the centre.
-
-    ``sizes``, ``angles`` and ``centres`` broadcast against ``points[..., 0]`` (the same map as
-    :func:`paperlib.mlts.texels.affine_object`, without its checks).
-    """
-    x, y = points[..., 0] * sizes, points[..., 1] * (sizes / aspect)
-    cos, sin = np.cos(angles), np.sin(angles)
-    return np.stack([cos * x - sin * y + centres[..., 0], sin * x + cos * y + centres[..., 1]], axis=-1)
-
-
 def _probe_test(slots: _Slots, rows, centres, sizes, aspect: float, angles, inclusion: bool,
                 occupancy: "_Occupancy | None") -> np.ndarray:
     """Whether each trial's probe vertices pass the cheap pre-tests, tested one vertex at a time.
@@ -299,7 +288,7 @@ def _probe_test(slots: _Slots, rows, centres, sizes, aspect: float, angles, incl
     for vertex in range(PROBE_VERTICES):
         if not active.size:
             break
-        point = _affine_map(slots.probes[rows[active], vertex], sizes[active], aspect, angles[active],
+        point = affine_map(slots.probes[rows[active], vertex], sizes[active], aspect, angles[active],
                             centres[active])
         ok = np.ones(len(active), dtype=bool)
         if inclusion:
@@ -317,7 +306,7 @@ def _polygons(slots: _Slots, rows, centres, sizes, aspect: float, angles):
     offsets = np.concatenate([[0], np.cumsum(counts)])
     owner = np.repeat(np.arange(len(rows)), counts)
     texel_vertices = slots.vertices[slots.offsets[rows][owner] + np.arange(offsets[-1]) - offsets[:-1][owner]]
-    vertices = _affine_map(texel_vertices, sizes[owner], aspect, angles[owner], centres[owner])
+    vertices = affine_map(texel_vertices, sizes[owner], aspect, angles[owner], centres[owner])
     shapes = shapely.polygons(shapely.linearrings(vertices, indices=owner)) if len(rows) else np.zeros(0, object)
     return vertices, offsets, shapes
 

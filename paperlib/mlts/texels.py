@@ -46,6 +46,7 @@ from .._checks import positive_number
 
 __all__ = [
     "TEXELS",
+    "affine_map",
     "affine_object",
     "affine_objects",
     "distance_to",
@@ -265,11 +266,6 @@ _RANDOM_GENERATORS = {
 }
 
 
-def _rotated(vertices: np.ndarray, angle: float) -> np.ndarray:
-    cos, sin = math.cos(angle), math.sin(angle)
-    return vertices @ np.array([[cos, sin], [-sin, cos]])
-
-
 def _rotated_all(vertices: np.ndarray, angles: np.ndarray) -> np.ndarray:
     """Each of ``vertices`` (n, k, 2) rotated by its angle (n,) (counter-clockwise as x right, y up)."""
     cos, sin = np.cos(angles)[:, None], np.sin(angles)[:, None]
@@ -446,6 +442,18 @@ def _finite_angle(angle) -> float:
     return angle
 
 
+def affine_map(points: np.ndarray, diameters, aspects, angles, centers) -> np.ndarray:
+    """Texel points (..., 2) scaled by (diameter, diameter / aspect), rotated by angle, moved to the centre.
+
+    The map of :func:`affine_object` WITHOUT input checks, for callers that validated their
+    inputs (the sampler tries many thousands of placements): ``diameters``, ``aspects``,
+    ``angles`` broadcast against ``points[..., 0]`` and ``centers`` against ``points``.
+    """
+    x, y = points[..., 0] * diameters, points[..., 1] * (diameters / aspects)
+    cos, sin = np.cos(angles), np.sin(angles)
+    return np.stack([cos * x - sin * y + centers[..., 0], sin * x + cos * y + centers[..., 1]], axis=-1)
+
+
 def affine_object(vertices, center, diameter, aspect, angle) -> np.ndarray:
     """The object ``O = T(center) R(angle) S(diameter, diameter / aspect)`` applied to a texel.
 
@@ -486,8 +494,7 @@ def affine_object(vertices, center, diameter, aspect, angle) -> np.ndarray:
     diameter = positive_number(diameter, "diameter")
     aspect = _aspect_ratio(aspect)
     angle = _finite_angle(angle)
-    scaled = vertices * np.array([diameter, diameter / aspect])
-    return _rotated(scaled, angle) + center
+    return affine_map(vertices, diameter, aspect, angle, center)
 
 
 def affine_objects(vertices_list, centers, diameters, aspects, angles) -> list[np.ndarray]:
@@ -519,31 +526,15 @@ def affine_objects(vertices_list, centers, diameters, aspects, angles) -> list[n
     if np.any(aspects < 1):
         raise ValueError("aspects must be >= 1 (1 keeps the texel's proportions)")
     if isinstance(vertices_list, np.ndarray) and vertices_list.ndim == 2:
-        return list(transform_shared(check_polygon(vertices_list), centers, diameters, aspects, angles))
+        vertices = check_polygon(vertices_list)
+        return list(affine_map(vertices[None], diameters[:, None], aspects[:, None], angles[:, None], centers[:, None]))
     texels = _texels_per_object(vertices_list, n_objects)
     counts = np.array([len(t) for t in texels], dtype=np.intp)
     stacked = np.concatenate(texels) if texels else np.empty((0, 2))
     # Each vertex carries its object's parameters, so one NumPy pass transforms them all.
-    scale = np.repeat(np.column_stack([diameters, diameters / aspects]), counts, axis=0)
-    cos, sin = np.repeat(np.cos(angles), counts), np.repeat(np.sin(angles), counts)
-    x, y = stacked[:, 0] * scale[:, 0], stacked[:, 1] * scale[:, 1]
-    moved = np.column_stack([cos * x - sin * y, sin * x + cos * y]) + np.repeat(centers, counts, axis=0)
+    owner = np.repeat(np.arange(n_objects), counts)
+    moved = affine_map(stacked, diameters[owner], aspects[owner], angles[owner], centers[owner])
     return np.split(moved, np.cumsum(counts)[:-1]) if n_objects else []
-
-
-def transform_shared(vertices: np.ndarray, centers: np.ndarray, diameters, aspects, angles) -> np.ndarray:
-    """:func:`affine_objects` of one shared texel as an (n, k, 2) array, WITHOUT input checks.
-
-    For callers that have validated their inputs (the sampler tries thousands of placements):
-    ``vertices`` (k, 2), ``centers`` (n, 2), ``diameters``, ``aspects``, ``angles`` (n,) or
-    scalars, all finite, diameters > 0, aspects >= 1.
-    """
-    diameters, aspects, angles = (np.broadcast_to(np.asarray(value, dtype=np.float64), (len(centers),))
-                                  for value in (diameters, aspects, angles))
-    x = vertices[None, :, 0] * diameters[:, None]
-    y = vertices[None, :, 1] * (diameters / aspects)[:, None]
-    cos, sin = np.cos(angles)[:, None], np.sin(angles)[:, None]
-    return np.stack([cos * x - sin * y + centers[:, 0:1], sin * x + cos * y + centers[:, 1:2]], axis=-1)
 
 
 def _per_object(values, n_objects: int, name: str) -> np.ndarray:
