@@ -5,6 +5,8 @@
   re-synthesize.
 - :func:`stipple_explorer`: Kim 2009 (:mod:`paperlib.stipple`): learn a stipple library from
   synthetic tone textures (tone-map parameters, iterations, tile size), stipple an image.
+- :func:`mlts_explorer`: Alvarez 2015 (:mod:`paperlib.mlts`): every layer and rendering
+  parameter of a script, a "random" button (the automatic mode), save and load scripts.
 
 Each explorer keeps its update logic in plain methods, so tests and notebooks drive it without a
 browser, and renders its figure to PNG (works headless, with the Agg backend and in papermill).
@@ -19,9 +21,10 @@ from .arrangement import (
     density_image,
     scaled_window,
 )
+from .mlts import MLTSExplorer, mlts_explorer
 from .stipple import StippleExplorer, stipple_explorer
 
 __all__ = [
     "DENSITY_KINDS", "EXEMPLARS", "ArrangementExplorer", "Drawing", "arrangement_explorer", "density_image",
-    "scaled_window", "StippleExplorer", "stipple_explorer",
+    "scaled_window", "MLTSExplorer", "mlts_explorer", "StippleExplorer", "stipple_explorer",
 ]
