@@ -10,6 +10,7 @@ from shapely.geometry import LineString, box
 from shapely.ops import split
 
 from paperlib.mlts.basic import (
+    _mean_lens_area,
     DEFAULT_PALETTE,
     _chaos_game,
     _line_cell_labels,
@@ -96,16 +97,58 @@ def test_dead_leaves_coverage_matches_boolean_model(shape, n, r_min, r_max, alph
     assert abs(measured - wrong) > tolerance
 
 
+def _brute_force_coverage_std(n, shape, r_min, r_max, alpha):
+    """Var of the covered fraction over every ordered pair of pixel centres, L(d) by adaptive quadrature."""
+    height, width = shape
+    a = dead_leaves_mean_area(r_min, r_max, alpha)
+    area = dead_leaves_window_area(shape, r_max)
+    norm = integrate.quad(lambda r: r**-alpha, r_min, r_max)[0]
+
+    def lens(d):
+        def integrand(r):
+            if d >= 2 * r:
+                return 0.0
+            return (2 * r * r * math.acos(d / (2 * r)) - d / 2 * math.sqrt(4 * r * r - d * d)) * r**-alpha / norm
+        return integrate.quad(integrand, max(r_min, d / 2), r_max, limit=200)[0] if d < 2 * r_max else 0.0
+
+    rows, cols = np.divmod(np.arange(height * width), width)
+    distances = np.hypot(rows[:, None] - rows[None, :], cols[:, None] - cols[None, :])
+    unique, inverse = np.unique(np.round(distances, 12), return_inverse=True)
+    lenses = np.array([lens(d) for d in unique])[inverse.reshape(distances.shape)]
+    covariance = (1 - (2 * a - lenses) / area) ** n - (1 - a / area) ** (2 * n)
+    return math.sqrt(covariance.sum()) / (height * width)
+
+
+def test_mean_lens_area_at_zero_is_the_mean_leaf_area():
+    for r_min, r_max, alpha in [(2.0, 200.0, 3.0), (1.0, 8.0, 1.0), (0.5, 30.0, 2.2)]:
+        lens = _mean_lens_area(np.array([0.0]), r_min, r_max, alpha)[0]
+        assert lens == pytest.approx(dead_leaves_mean_area(r_min, r_max, alpha), rel=1e-7)
+
+
+@pytest.mark.parametrize(("shape", "n", "r_min", "r_max", "alpha"), [
+    ((7, 9), 40, 0.6, 4.0, 3.0),  # discs reach across the image: the far pairs barely exist
+    ((12, 10), 150, 0.3, 2.5, 2.0),  # many pairs beyond 2 r_max, where a fixed n makes Cov < 0
+])
+def test_coverage_std_equals_the_pairwise_sum(shape, n, r_min, r_max, alpha):
+    expected = _brute_force_coverage_std(n, shape, r_min, r_max, alpha)
+    assert dead_leaves_coverage_std(n, shape, r_min, r_max, alpha) == pytest.approx(expected, rel=1e-4)
+
+
 def test_coverage_std_matches_seed_spread_and_binomial_limit():
-    shape, n, r_min, r_max = (64, 64), 500, 1.0, 8.0
+    shape, n, r_min, r_max = (64, 64), 300, 2.0, 10.0
     covered = [(dead_leaves(shape, n_leaves=n, r_min=r_min, r_max=r_max, rng=seed, return_labels=True)[1] >= 0).mean()
-               for seed in range(60)]
-    # Sample std of 60 draws: relative standard error about 1/sqrt(2 * 59) = 9 %, so 35 % is > 3.5 sigma.
-    assert np.std(covered, ddof=1) == pytest.approx(dead_leaves_coverage_std(n, shape, r_min, r_max), rel=0.35)
-    # Discs too small to reach two pixel centres: pixels are (almost) independent, binomial variance.
-    q = 1 - (1 - dead_leaves_mean_area(0.1, 0.45, 3.0) / dead_leaves_window_area(shape, 0.45)) ** n
-    binomial = math.sqrt(q * (1 - q) / (64 * 64))
-    assert dead_leaves_coverage_std(n, shape, 0.1, 0.45) == pytest.approx(binomial, rel=1e-2)
+               for seed in range(400)]
+    # Sample std of 400 draws: relative standard error 1/sqrt(2 * 399) = 3.5 %, so 14 % is 4 sigma
+    # (the formula without the far pairs was 10 % too high here, the CDF-grid quadrature 4 % too low).
+    assert np.std(covered, ddof=1) == pytest.approx(dead_leaves_coverage_std(n, shape, r_min, r_max), rel=0.14)
+    # Discs too small to cover two pixel centres: binomial variance plus, for every other pair, the
+    # covariance of a fixed number of leaves (1 - 2a/A)^n - (1 - a/A)^(2n), in closed form.
+    p = dead_leaves_mean_area(0.1, 0.45, 3.0) / dead_leaves_window_area(shape, 0.45)
+    q, pixels = 1 - (1 - p) ** n, 64 * 64
+    pair = (1 - 2 * p) ** n - (1 - p) ** (2 * n)
+    closed_form = math.sqrt(q * (1 - q) / pixels + (pixels - 1) / pixels * pair)
+    assert dead_leaves_coverage_std(n, shape, 0.1, 0.45) == pytest.approx(closed_form, rel=1e-6)  # cancellation in pair
+    assert closed_form < 0.97 * math.sqrt(q * (1 - q) / pixels)  # the far pairs matter: 5 % here
 
 
 def test_dead_leaves_coverage_target_and_prefix_property():

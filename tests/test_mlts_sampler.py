@@ -9,9 +9,9 @@ import shapely
 from shapely.geometry import Polygon
 
 from paperlib.mlts.layers import Layer
-from paperlib.mlts.render import load_palette, render, render_structure
+from paperlib.mlts.render import load_palette, render, render_structure, tessellation_cells
 from paperlib.mlts import sampler
-from paperlib.mlts.sampler import Structure, rule_violations, sample_structure
+from paperlib.mlts.sampler import MLObject, Structure, rule_violations, sample_structure
 from paperlib.mlts.script import RenderSettings, Script, sample_script
 
 
@@ -334,3 +334,19 @@ def test_changing_the_texels_keeps_the_placements_of_a_layer_without_rules():
     assert [item.center for item in a] == [item.center for item in b]
     assert [item.angle for item in a] == [item.angle for item in b]
     assert {item.kind for item in b} == {"triangle", "random_shape"}
+
+
+def test_tessellation_cells_are_the_faces_of_the_boundary_arrangement():
+    """Pixel cells = shapely's faces of the union of object boundaries (no face thinner than a pixel here)."""
+    squares = [(10, 10, 60, 50), (40, 30, 90, 80), (20, 60, 70, 90), (65, 5, 95, 25)]
+    objects = [MLObject(0, -1, "image", (50.0, 50.0), 141.0, 0.0, 0,
+                        np.array([[0.0, 0.0], [100.0, 0.0], [100.0, 100.0], [0.0, 100.0]]))]
+    for x0, y0, x1, y1 in squares:
+        objects.append(MLObject(1, 0, "rectangle", ((x0 + x1) / 2, (y0 + y1) / 2), x1 - x0, 0.0, 0,
+                                np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)))
+    structure = Structure(100, 100, (Layer(),), objects, np.array([1, 4]), np.array([1, 4]))
+    edges = shapely.get_parts(shapely.union_all([Polygon(item.polygon).boundary for item in objects]))
+    faces = shapely.get_parts(shapely.polygonize(edges))
+    cells = tessellation_cells(structure, 2, np.random.default_rng(0))
+    # outside, A only, A and B, B only, B and C, C only, D
+    assert cells.max() == len(faces) == 7

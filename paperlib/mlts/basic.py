@@ -259,14 +259,22 @@ def dead_leaves_coverage(n, mean_area, area) -> float:
     return -math.expm1(-n * mean_area / area)
 
 
-def _mean_lens_area(distances: np.ndarray, r_min, r_max, alpha, n_radii: int = 2000) -> np.ndarray:
-    """E[area of D(x, r) n D(y, r)] for |x - y| = ``distances``, by midpoint quadrature in the radius CDF."""
-    radii = _power_law_radii((np.arange(n_radii) + 0.5) / n_radii, r_min, r_max, alpha)
+def _mean_lens_area(distances: np.ndarray, r_min, r_max, alpha, n_radii: int = 4097) -> np.ndarray:
+    """E[area of D(x, r) n D(y, r)] for |x - y| = ``distances``, r with density ~ r^(-alpha) on [r_min, r_max].
+
+    Composite Simpson in u = log r with the density's weight r f(r): even spacing in log r
+    follows the heavy tail of small radii and keeps the rare large ones (a grid in the CDF
+    misses the tail and underestimates L(0) = E[pi r^2] by several percent).
+    """
+    u = np.linspace(math.log(r_min), math.log(r_max), n_radii)
+    r = np.exp(u)
+    weights = np.full(n_radii, 2.0)
+    weights[1::2], weights[0], weights[-1] = 4.0, 1.0, 1.0
+    weights *= (u[1] - u[0]) / 3.0 * r ** (1.0 - alpha) / _power_moment(r_min, r_max, -alpha)
     half = distances[:, None] / 2.0
-    r = radii[None, :]
-    ratio = np.clip(half / r, 0.0, 1.0)
-    lens = 2.0 * r**2 * np.arccos(ratio) - 2.0 * half * np.sqrt(np.maximum(r**2 - half**2, 0.0))
-    return lens.mean(axis=1)
+    ratio = np.clip(half / r[None, :], 0.0, 1.0)
+    lens = 2.0 * r[None, :] ** 2 * np.arccos(ratio) - 2.0 * half * np.sqrt(np.maximum(r[None, :] ** 2 - half**2, 0.0))
+    return lens @ weights
 
 
 def dead_leaves_coverage_std(n, shape, r_min, r_max, alpha=3.0) -> float:
@@ -276,8 +284,9 @@ def dead_leaves_coverage_std(n, shape, r_min, r_max, alpha=3.0) -> float:
     For two points at distance d, both stay uncovered by one leaf with probability
     1 - (2 a - L(d)) / A, where L(d) = E[area of the lens of two discs of radius r at distance d];
     hence Cov(d) = (1 - (2a - L(d))/A)^n - (1 - a/A)^(2n), summed over all pairs of pixel centres
-    (by displacement, with multiplicities (W - |dx|)(H - |dy|)). L is computed by quadrature on a
-    grid of distances and interpolated.
+    (by displacement, with multiplicities (W - |dx|)(H - |dy|)); pairs farther apart than 2 r_max
+    keep the negative covariance of a fixed number of leaves. L is computed by Simpson quadrature
+    in log r on a grid of distances and interpolated.
 
     Parameters
     ----------
@@ -309,9 +318,14 @@ def dead_leaves_coverage_std(n, shape, r_min, r_max, alpha=3.0) -> float:
     grid = np.linspace(0.0, 2.0 * r_max, 1025)
     lens = np.interp(distance, grid, _mean_lens_area(grid, r_min, r_max, alpha))
     both_uncovered = np.exp(n * np.log1p(-(2.0 * mean_area - lens) / area))
-    covariance = both_uncovered - np.exp(2 * n * np.log1p(-mean_area / area))
+    uncovered_squared = np.exp(2 * n * np.log1p(-mean_area / area))
+    # Beyond 2 r_max no leaf covers both points, yet the covariance is not 0: with exactly n
+    # leaves, one leaf covering x leaves fewer for y, Cov = (1 - 2a/A)^n - (1 - a/A)^(2n) < 0.
+    far = math.exp(n * math.log1p(-2.0 * mean_area / area)) - uncovered_squared
     pairs = (height - np.abs(dy))[:, None] * (width - np.abs(dx))[None, :]
-    variance = float(np.sum(pairs * covariance)) / float(height * width) ** 2
+    pixels = float(height * width)
+    # every ordered pair of pixels: the near ones by displacement, all of them at the far value
+    variance = (float(np.sum(pairs * (both_uncovered - uncovered_squared - far))) + pixels**2 * far) / pixels**2
     return math.sqrt(max(variance, 0.0))
 
 

@@ -34,7 +34,7 @@ from .raster import coverage, paint
 from .sampler import Structure, sample_structure
 from .script import RenderSettings, Script
 
-__all__ = ["load_palette", "render", "render_structure"]
+__all__ = ["load_palette", "render", "render_structure", "tessellation_cells"]
 
 # Palette pixels kept at most (a random subset of larger images, drawn with a fixed seed).
 PALETTE_PIXELS = 65536
@@ -89,12 +89,14 @@ def _light_points(polygons, rng: np.random.Generator) -> np.ndarray:
     return points
 
 
-def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) -> np.ndarray:
-    """Colour the cells of the arrangement of object boundaries (Fig. 15), anti-aliased.
+def tessellation_cells(structure: Structure, samples: int, rng) -> np.ndarray:
+    """Cell labels (1..k) of the arrangement of object boundaries (Fig. 15), on a grid ``samples`` x finer.
 
-    Each pixel of a grid ``samples`` times finer carries the XOR of random 63-bit keys of the
-    objects covering it, so equal keys mean the same set of objects; 4-connected components of
-    equal keys are the cells.
+    Each pixel of the fine grid carries the XOR of random 63-bit keys of the objects covering it,
+    so equal keys mean the same set of objects; 8-connected components of equal keys are the
+    cells. 8 and not 4: a thin face whose pixels touch only at corners stays one cell (with
+    4-connectivity such faces split into pieces coloured independently: 65 cells for 55 shapely
+    faces in a small test panel, against 55 with 8).
     """
     shape = (structure.height * samples, structure.width * samples)
     keys = np.zeros(shape, dtype=np.int64)
@@ -103,7 +105,12 @@ def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) 
         row0, col0, mask = coverage(item.polygon * samples, shape, samples=1)
         inside = mask > 0.5
         keys[row0 : row0 + mask.shape[0], col0 : col0 + mask.shape[1]][inside] ^= key
-    cells = label(keys, background=-1, connectivity=1)
+    return label(keys, background=-1, connectivity=2)
+
+
+def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) -> np.ndarray:
+    """Colour each cell of :func:`tessellation_cells` from the palette, averaged to pixels (anti-aliased)."""
+    cells = tessellation_cells(structure, samples, rng)
     colours = palette[rng.integers(len(palette), size=cells.max() + 1)]
     fine = colours[cells]
     return fine.reshape(structure.height, samples, structure.width, samples, 3).mean(axis=(1, 3))
