@@ -19,7 +19,7 @@ from paperlib.mlts.texels import (
     orientation_angle,
     orientation_angles,
     texel,
-    texels,
+    texel_batch,
 )
 
 SEEDS = range(40)
@@ -378,14 +378,14 @@ def test_vectorised_orientation_bad_input():
 
 
 @pytest.mark.parametrize("kind", TEXELS)
-def test_texels_in_one_draw_are_valid_reproducible_and_independent(kind):
-    batch = texels(kind, 40, 5)
+def test_texel_batch_in_one_draw_are_valid_reproducible_and_independent(kind):
+    batch = texel_batch(kind, 40, 5)
     assert len(batch) == 40
     for vertices in batch:
         np.testing.assert_array_equal(vertices.min(axis=0), [-0.5, -0.5])
         np.testing.assert_array_equal(vertices.max(axis=0), [0.5, 0.5])
         assert Polygon(vertices).is_valid and orient(Polygon(vertices), sign=1.0).equals_exact(Polygon(vertices), 0)
-    np.testing.assert_array_equal(np.concatenate(batch), np.concatenate(texels(kind, 40, 5)))
+    np.testing.assert_array_equal(np.concatenate(batch), np.concatenate(texel_batch(kind, 40, 5)))
     distinct = {vertices.tobytes() for vertices in batch}
     if kind in ("rectangle", "ellipse"):
         assert len(distinct) == 1
@@ -393,11 +393,11 @@ def test_texels_in_one_draw_are_valid_reproducible_and_independent(kind):
         assert 10 <= len(distinct) < 40
     else:
         assert len(distinct) == 40
-    np.testing.assert_array_equal(texel(kind, 3), texels(kind, 1, 3)[0])
-    assert texels(kind, 0, 1) == []
+    np.testing.assert_array_equal(texel(kind, 3), texel_batch(kind, 1, 3)[0])
+    assert texel_batch(kind, 0, 1) == []
 
 
 @pytest.mark.parametrize("count", [-1, 2.5, True])
-def test_texels_rejects_bad_counts(count):
+def test_texel_batch_rejects_bad_counts(count):
     with pytest.raises(ValueError, match="count"):
-        texels("triangle", count, 0)
+        texel_batch("triangle", count, 0)

@@ -39,7 +39,7 @@ from .raster import coverage, paint, render_polygons
 from .render import load_palette, render, render_structure, tessellation_cells
 from .sampler import MLObject, Structure, rule_violations, sample_structure
 from .script import RenderSettings, Script, sample_script
-from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel, texels
+from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel, texel_batch
 
 __all__ = [
     "DEFAULT_PALETTE", "Layer", "MLObject", "RenderSettings", "Script", "Structure", "TEXELS", "affine_object",
@@ -47,5 +47,5 @@ __all__ = [
     "dead_leaves_coverage_std", "dead_leaves_mean_area", "dead_leaves_window_area", "ifs_chaos_game", "ifs_fractal",
     "load_palette", "object_diameter", "orientation_angle", "paint", "poisson_line_tessellation", "render",
     "render_polygons", "render_structure", "rule_violations", "sample_script", "sample_structure",
-    "sierpinski_triangle", "tessellation_cells", "texel", "texels", "voronoi_tessellation",
+    "sierpinski_triangle", "tessellation_cells", "texel", "texel_batch", "voronoi_tessellation",
 ]

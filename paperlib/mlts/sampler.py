@@ -57,11 +57,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
-import skimage.draw
 from shapely.geometry import Polygon
 
 from .layers import Layer
-from .texels import affine_map, distances_to, orientation_angles, texels
+from .raster import coverage
+from .texels import affine_map, distances_to, orientation_angles, texel_batch
 
 __all__ = ["MLObject", "Structure", "rule_violations", "sample_structure"]
 
@@ -174,7 +174,7 @@ class _Slots:
 
     fathers: np.ndarray  # object index of each slot's father
     father_shapes: np.ndarray  # shapely polygons (prepared), one per slot
-    father_bounds: np.ndarray  # (n, 4)
+    father_frames: np.ndarray  # (n, 3, 2): centre c and axes e1, e2 of the father's box c + u e1 + v e2
     kinds: np.ndarray  # texel kind of each slot (str)
     vertices: np.ndarray  # (V, 2) all texels, slot after slot
     offsets: np.ndarray  # (n + 1,)
@@ -208,7 +208,7 @@ class _Candidates:
         return self.vertices[self.offsets[j]:self.offsets[j + 1]].copy()
 
 
-def _layer_slots(layer: Layer, fathers: list, shapes: list, rng: np.random.Generator) -> _Slots:
+def _layer_slots(layer: Layer, fathers: list, shapes: list, frames: list, rng: np.random.Generator) -> _Slots:
     """Slots of every father with positive area (no point lies inside a degenerate father)."""
     usable = [father for father in fathers if shapes[father].area > 0]
     father_of = np.repeat(np.array(usable, dtype=np.int64), layer.max_objects)
@@ -218,39 +218,48 @@ def _layer_slots(layer: Layer, fathers: list, shapes: list, rng: np.random.Gener
     drawn = [None] * len(father_of)
     for kind in layer.texels:  # one vectorised draw per kind, in the layer's order
         rows = np.flatnonzero(kinds == kind)
-        for row, vertices in zip(rows, texels(kind, len(rows), rng)):
+        for row, vertices in zip(rows, texel_batch(kind, len(rows), rng)):
             drawn[row] = vertices
     counts = np.array([len(vertices) for vertices in drawn], dtype=np.int64)
     vertices = np.concatenate(drawn) if drawn else np.zeros((0, 2))
     probes = np.array([shape[np.arange(PROBE_VERTICES) * len(shape) // PROBE_VERTICES] for shape in drawn])
-    return _Slots(father_of, father_shapes, shapely.bounds(father_shapes).reshape(-1, 4), kinds, vertices,
-                  np.concatenate([[0], np.cumsum(counts)]), probes.reshape(-1, PROBE_VERTICES, 2))
+    father_frames = np.array([frames[father] for father in father_of]).reshape(-1, 3, 2)
+    return _Slots(father_of, father_shapes, father_frames, kinds, vertices, np.concatenate([[0], np.cumsum(counts)]),
+                  probes.reshape(-1, PROBE_VERTICES, 2))
+
+
+def _frame(centre, diameter: float, aspect: float, angle: float) -> np.ndarray:
+    """The box of an object: its texel's [-0.5, 0.5]^2 under the object's affine map, as (c, e1, e2)."""
+    cos, sin = math.cos(angle), math.sin(angle)
+    return np.array([centre, (diameter * cos, diameter * sin), (-diameter / aspect * sin, diameter / aspect * cos)])
 
 
 def _centres_in_fathers(slots: _Slots, rows: np.ndarray, rng: np.random.Generator):
-    """Uniform points inside each row's father (rejection from its bounding box), and which were found.
+    """Uniform points inside each row's father, and which were found.
 
-    Round k draws 2**k points per missing centre and keeps the first inside, so thin fathers
-    (a small area in a large box) take a few rounds, not hundreds.
+    Rejection from the father's own box (its texel's square under its affine map, so an
+    elongated, turned father is not sampled through its much larger axis-aligned box): round k
+    draws 2**k points per missing centre and keeps the first inside, so thin fathers take a few
+    rounds, not hundreds.
     """
-    bounds = slots.father_bounds[rows]
-    centres = np.empty((len(rows), 2))
+    frames = slots.father_frames[rows]
+    centres = frames[:, 0].copy()
     missing = np.arange(len(rows))
     for attempt in range(MAX_CENTRE_ROUNDS):
         if not missing.size:
             break
         draws = max(1, min(2**attempt, MAX_CENTRE_DRAWS, CENTRE_POINTS // len(missing)))
-        x0, y0, x1, y1 = (np.repeat(column, draws) for column in bounds[missing].T)
-        xs, ys = rng.uniform(x0, x1), rng.uniform(y0, y1)
-        inside = shapely.contains_xy(np.repeat(slots.father_shapes[rows[missing]], draws), xs, ys)
+        u, v = rng.uniform(-0.5, 0.5, size=(2, len(missing), draws, 1))
+        box = frames[missing][:, None]
+        points = (box[..., 0, :] + u * box[..., 1, :] + v * box[..., 2, :]).reshape(-1, 2)
+        inside = shapely.contains_xy(np.repeat(slots.father_shapes[rows[missing]], draws), points[:, 0], points[:, 1])
         inside = inside.reshape(-1, draws)
         found = inside.any(axis=1)
         first = np.arange(len(missing)) * draws + inside.argmax(axis=1)
-        centres[missing[found]] = np.column_stack([xs[first[found]], ys[first[found]]])
+        centres[missing[found]] = points[first[found]]
         missing = missing[~found]
     found = np.ones(len(rows), dtype=bool)
     found[missing] = False  # a sliver father: those trials fail rather than loop
-    centres[missing] = slots.father_bounds[rows[missing], :2]
     return centres, found
 
 
@@ -323,9 +332,9 @@ def _candidates(slots: _Slots, rows, layer: Layer, diameter: float, points, fars
     for target, point in enumerate(points):
         # a centre on a finite orientation point has no direction: that trial fails
         keeps &= ~((targets == target) & (distances_to(centres, point) == 0))
-    centres[~keeps] = slots.father_bounds[rows[~keeps], :2] + (1.0, 0.0)  # any point off V_0, V_1 (never kept)
-    angles, factors = _orientations(centres, targets, points, fars, layer.vanishing)
-    sizes = diameter * factors
+    angles, sizes = np.zeros(len(rows)), np.full(len(rows), diameter)
+    angles[keeps], factors = _orientations(centres[keeps], targets[keeps], points, fars, layer.vanishing)
+    sizes[keeps] *= factors
     if (layer.inclusion or occupancy is not None) and keeps.any():
         kept = np.flatnonzero(keeps)
         keeps[kept] = _probe_test(slots, rows[kept], centres[kept], sizes[kept], layer.aspect_ratio, angles[kept],
@@ -361,8 +370,8 @@ class _Occupancy:
     def add(self, shapes: list, polygons: list) -> None:
         shapely.prepare(shapes)  # many point tests per object follow
         for shape, polygon in zip(shapes, polygons):
-            rows, cols = skimage.draw.polygon(polygon[:, 1] - 0.5, polygon[:, 0] - 0.5, self.labels.shape)
-            self.labels[rows, cols] = len(self.shapes)
+            row0, col0, mask = coverage(polygon, self.labels.shape, samples=1)  # 1 sample: the pixel centre
+            self.labels[row0:row0 + mask.shape[0], col0:col0 + mask.shape[1]][mask > 0] = len(self.shapes)
             self.shapes.append(shape)
         self.shapes_array = np.array(self.shapes, dtype=object)
         self._tree = None
@@ -523,6 +532,7 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
     rectangle = np.array([[0.0, 0.0], [width, 0.0], [width, height], [0.0, height]])
     objects = [MLObject(0, -1, "image", (width / 2, height / 2), math.hypot(width, height), 0.0, 0, rectangle)]
     geometries = [Polygon(rectangle)]
+    frames = [np.array([(width / 2, height / 2), (width, 0.0), (0.0, height)])]
     tried, placed = [1], [1]
     fathers = [0]
     for number, layer in enumerate(layers, start=1):
@@ -531,7 +541,7 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
         # texels and placements from separate streams: changing T(L_m) leaves the trials' centres and
         # orientations as they were (Figs. 12 and 18 compare textures that differ only by shape)
         texel_rng, placement_rng = rng.spawn(2)
-        slots = _layer_slots(layer, fathers, geometries, texel_rng)
+        slots = _layer_slots(layer, fathers, geometries, frames, texel_rng)
         children = []
         placements = _place_layer(layer, slots, width, height, points, fars, placement_rng)
         for slot, centre, size, angle, reductions, polygon, shape in placements:
@@ -539,6 +549,7 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
             objects.append(MLObject(number, int(slots.fathers[slot]), str(slots.kinds[slot]),
                                     (float(centre[0]), float(centre[1])), size, angle, reductions, polygon))
             geometries.append(shape)
+            frames.append(_frame(centre, size, layer.aspect_ratio, angle))
         tried.append(len(fathers) * layer.max_objects)  # degenerate fathers' children count as given up
         placed.append(len(children))
         fathers = children

@@ -55,7 +55,7 @@ __all__ = [
     "orientation_angle",
     "orientation_angles",
     "texel",
-    "texels",
+    "texel_batch",
 ]
 
 #: Texel kinds of section 3 and Fig. 12, in the order the paper lists them.
@@ -78,7 +78,7 @@ RANDOM_SHAPE_HARMONICS = (2, 5)
 #: Range of sum_j |a_j|; below 1 the radius stays positive, so the shape is star-shaped.
 RANDOM_SHAPE_AMPLITUDE = (0.2, 0.6)
 #: Rotations tried at once to bracket the square-box rotation within a quarter turn.
-SQUARE_BOX_GRID = 17
+SQUARE_BOX_GRID = 9
 #: Closed-form refinements of the square-box rotation before falling back to bisection.
 MAX_SINUSOID_STEPS = 4
 #: Bisection steps of the fallback: a bracket of a sixteenth turn shrinks to rounding level in < 60.
@@ -141,7 +141,7 @@ def texel(kind: str, rng=None, *, n_vertices: int | None = None) -> np.ndarray:
     multiple of 4 this is a continuum; other regular polygons have only a few square-box
     placements up to symmetry (4 for odd side counts, 2 for 6 or 10 sides), and the draw picks
     among them. The object's orientation in the image is set by :func:`affine_object`'s angle
-    anyway. ``texel(kind, rng)`` is ``texels(kind, 1, rng)[0]``.
+    anyway. ``texel(kind, rng)`` is ``texel_batch(kind, 1, rng)[0]``.
 
     References
     ----------
@@ -149,10 +149,10 @@ def texel(kind: str, rng=None, *, n_vertices: int | None = None) -> np.ndarray:
     ellipses, and convex polygons") and Fig. 12 (random shapes, regular polygons, ellipses,
     triangles).
     """
-    return texels(kind, 1, rng, n_vertices=n_vertices)[0]
+    return texel_batch(kind, 1, rng, n_vertices=n_vertices)[0]
 
 
-def texels(kind: str, count: int, rng=None, *, n_vertices: int | None = None) -> list[np.ndarray]:
+def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = None) -> list[np.ndarray]:
     """``count`` independent texels of one kind, drawn together (the sampler's fast path).
 
     Each is distributed as :func:`texel` describes; drawing them in one call vectorises the
