@@ -350,3 +350,14 @@ def test_vary_positions_moves_interior_elements_to_barycentre_plus_shift():
 def test_boxes_type_roundtrip():
     boxes = boxes_of(segment((0, 0), (1, 0)), segment((0, 1), (0, 3)))
     assert isinstance(boxes, OrientedBoxes) and len(boxes) == 2
+
+
+def test_exchange_keeps_strokes_valid_when_a_reference_element_has_zero_thickness():
+    strokes = hatching(12)  # straight double strokes: thin but non-zero boxes
+    strokes += [segment((12.0, -1.0), (12.0, 1.0))]  # one perfectly straight hatch: skeleton thickness 0
+    analysis = analyze(strokes, 0.4, dimension=1)
+    assert (analysis.boxes.half_lengths[:, 1] == 0).any()
+    result = synthesize(analysis, [(0, 0), (20, 0)], rings=1, rng=0)
+    for seed in range(5):
+        varied = exchange_parameters(result, analysis, 1.0, rng=seed)
+        assert all(s.width > 0 for s in varied.strokes)

@@ -13,6 +13,8 @@ licence and size:
   matplotlib (shapes with large-scale structure).
 - :mod:`.exemplars`: documented, seeded generators of element arrangements made of Hershey
   glyphs placed by point processes, with their ground truth (Hurtut 2009's exemplars).
+- :mod:`.strokepatterns`: documented, seeded generators of synthetic reference stroke patterns with
+  their true elements and clustering scale (Barla 2006's hatchings, bars, drops, flowers).
 - :mod:`.stipple`: documented, seeded generators of synthetic hand-drawn-like stipple tone
   textures and tone-map sheets (Kim 2009's inputs; no hand-drawn stipple data can be shipped).
 """
@@ -34,6 +36,18 @@ from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
 from .outlines import glyph_outline, glyph_outlines, outline_names
 from .stipple import stipple_tone_sheet, stipple_tone_texture
+from .strokepatterns import (
+    StrokePatternExemplar,
+    alternating_color_exemplar,
+    bars_exemplar,
+    drops_exemplar,
+    flowers_exemplar,
+    gradient_hatching_exemplar,
+    irregular_exemplar,
+    jittered_hatching_exemplar,
+    sketchy_hatching_exemplar,
+    two_hatchings_exemplar,
+)
 
 __all__ = [
     "DEFAULT_STROKE_WIDTH",
@@ -65,4 +79,14 @@ __all__ = [
     "stipple_tone_sheet",
     "stipple_tone_texture",
     "two_category_exemplar",
+    "StrokePatternExemplar",
+    "alternating_color_exemplar",
+    "bars_exemplar",
+    "drops_exemplar",
+    "flowers_exemplar",
+    "gradient_hatching_exemplar",
+    "irregular_exemplar",
+    "jittered_hatching_exemplar",
+    "sketchy_hatching_exemplar",
+    "two_hatchings_exemplar",
 ]

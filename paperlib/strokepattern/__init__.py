@@ -13,6 +13,7 @@
 from .analysis import (
     PatternAnalysis,
     analyze,
+    as_region,
     chain_edges,
     cluster_strokes,
     continuation,
@@ -25,7 +26,6 @@ from .measures import MEASURES, Thresholds, measure_tables, rule_score
 from .synthesis import (
     Seeds,
     Synthesis,
-    as_region,
     growth_order,
     ring_neighbourhoods,
     seeds_1d,

@@ -34,11 +34,19 @@ from matplotlib.colors import to_rgb
 from scipy.spatial import Delaunay, QhullError
 
 from .._checks import positive_number
-from ..geometry import Element, OrientedBoxes, Stroke, directed_hausdorff_boxes, oriented_bounding_boxes
+from ..geometry import (
+    Element,
+    OrientedBoxes,
+    Stroke,
+    as_points,
+    directed_hausdorff_boxes,
+    oriented_bounding_boxes,
+)
 
 __all__ = [
     "PatternAnalysis",
     "analyze",
+    "as_region",
     "chain_edges",
     "cluster_strokes",
     "continuation",
@@ -464,14 +472,35 @@ def _element_colors(elements) -> np.ndarray:
 
 def _as_path(path, name: str = "path") -> np.ndarray:
     """A polyline ``(m, 2)`` of positive length, as a float array without repeated vertices."""
-    from ..geometry import as_points
-
     points = np.array(as_points(path, name=name, min_points=2))
     keep = np.concatenate([[True], np.any(np.diff(points, axis=0) != 0, axis=1)])
     points = points[keep]
     if len(points) < 2:
         raise ValueError(f"{name} has zero length: it needs two distinct points")
     return points
+
+
+def as_region(region):
+    """A region as a valid shapely (Multi)Polygon of positive area.
+
+    Accepts a shapely (Multi)Polygon, a polygon's vertices ``(m, 2)`` or a rectangle ``(xmin, xmax, ymin, ymax)``.
+    """
+    from shapely.geometry import MultiPolygon, Polygon
+
+    if not isinstance(region, (Polygon, MultiPolygon)):
+        array = np.asarray(region, dtype=np.float64)
+        if array.shape == (4,):
+            xmin, xmax, ymin, ymax = array
+            region = shapely.box(xmin, ymin, xmax, ymax)
+        elif array.ndim == 2 and array.shape[1] == 2 and len(array) >= 3 and np.isfinite(array).all():
+            region = shapely.Polygon(array)
+        else:
+            raise ValueError("region must be a shapely Polygon, polygon vertices (m, 2) with m >= 3, or a rectangle "
+                             f"(xmin, xmax, ymin, ymax); got an array of shape {array.shape}")
+    if region.is_empty or not region.is_valid or not region.area > 0:
+        raise ValueError("the region must be a valid polygon of positive area "
+                         f"(got area {region.area:g}, {shapely.is_valid_reason(region)})")
+    return region
 
 
 def path_frames(path: np.ndarray, arc: np.ndarray) -> np.ndarray:
@@ -507,9 +536,7 @@ def _distribution_1d(positions, path):
 def _distribution_2d(positions, strokes, region):
     if region is None:
         region = shapely.convex_hull(shapely.multipoints(np.vstack([s.points for s in strokes])))
-    area = float(region.area)
-    if not area > 0:
-        raise ValueError("the reference region has zero area")
+    area = float(as_region(region).area)
     return np.full(len(positions), np.nan), np.zeros(len(positions)), unskewed_delaunay_edges(positions), area
 
 

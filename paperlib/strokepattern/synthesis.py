@@ -46,6 +46,7 @@ from ._kernels import grow
 from .analysis import (
     PatternAnalysis,
     _as_path,
+    as_region,
     chain_edges,
     path_frames,
     unskewed_delaunay_edges,
@@ -62,29 +63,6 @@ LLOYD_ITERATIONS = 40
 
 
 # --------------------------------------------------------------------------- targets
-
-
-def as_region(region):
-    """A target region as a valid shapely (Multi)Polygon of positive area.
-
-    Accepts a shapely (Multi)Polygon, a polygon's vertices ``(m, 2)`` or a rectangle ``(xmin, xmax, ymin, ymax)``.
-    """
-    from shapely.geometry import MultiPolygon, Polygon
-
-    if not isinstance(region, (Polygon, MultiPolygon)):
-        array = np.asarray(region, dtype=np.float64)
-        if array.shape == (4,):
-            xmin, xmax, ymin, ymax = array
-            region = shapely.box(xmin, ymin, xmax, ymax)
-        elif array.ndim == 2 and array.shape[1] == 2 and len(array) >= 3 and np.isfinite(array).all():
-            region = shapely.Polygon(array)
-        else:
-            raise ValueError("region must be a shapely Polygon, polygon vertices (m, 2) with m >= 3, or a rectangle "
-                             f"(xmin, xmax, ymin, ymax); got an array of shape {array.shape}")
-    if region.is_empty or not region.is_valid or not region.area > 0:
-        raise ValueError("the target region must be a valid polygon of positive area "
-                         f"(got area {region.area:g}, {shapely.is_valid_reason(region)})")
-    return region
 
 
 def _extent(target, dimension: int):

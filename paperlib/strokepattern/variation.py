@@ -53,6 +53,12 @@ def _similar_value(values, own: float, size: int, rng, *, period: float | None =
     return float(values[nearest[rng.integers(len(nearest))]])
 
 
+def _ratio(new: float, old: float) -> float:
+    """The stretch from ``old`` to ``new``; 1 when either is 0 (a straight skeleton has no thickness to scale,
+    and a stretch to 0 would collapse the strokes)."""
+    return new / old if new > 0 and old > 0 else 1.0
+
+
 def _reshaped(element: Element, center, angle: float, turn: float, stretch_major: float,
               stretch_minor: float) -> Element:
     """The element stretched along its axes (at ``angle``) about ``center``, then turned by ``turn``."""
@@ -102,8 +108,8 @@ def exchange_parameters(synthesis: Synthesis, analysis: PatternAnalysis, amount:
         new_angle = _similar_value(angles, own[0], size, rng, period=np.pi)
         new_length = _similar_value(lengths, own[1], size, rng)
         new_thickness = _similar_value(thicknesses, own[2], size, rng)
-        stretch_major = new_length / own[1] if own[1] > 0 else 1.0
-        stretch_minor = new_thickness / own[2] if own[2] > 0 else 1.0
+        stretch_major = _ratio(new_length, own[1])
+        stretch_minor = _ratio(new_thickness, own[2])
         elements.append(_reshaped(element, center, own[0] + frame, new_angle - own[0], stretch_major, stretch_minor))
     return dataclasses.replace(synthesis, elements=tuple(elements))
 

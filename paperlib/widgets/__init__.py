@@ -7,6 +7,9 @@
   synthetic tone textures (tone-map parameters, iterations, tile size), stipple an image.
 - :func:`mlts_explorer`: Alvarez 2015 (:mod:`paperlib.mlts`): every layer and rendering
   parameter of a script, a "random" button (the automatic mode), save and load scripts.
+- :func:`strokepattern_explorer`: Barla 2006 (:mod:`paperlib.strokepattern`): the clustering live
+  under an epsilon slider, rings, variation, a target path or region picked or drawn with the
+  mouse (ipycanvas), synthesize.
 
 Each explorer keeps its update logic in plain methods, so tests and notebooks drive it without a
 browser, and renders its figure to PNG (works headless, with the Agg backend and in papermill).
@@ -23,8 +26,10 @@ from .arrangement import (
 )
 from .mlts import MLTSExplorer, mlts_explorer
 from .stipple import StippleExplorer, stipple_explorer
+from .strokepattern import StrokePatternExplorer, strokepattern_explorer
 
 __all__ = [
     "DENSITY_KINDS", "EXEMPLARS", "ArrangementExplorer", "Drawing", "arrangement_explorer", "density_image",
     "scaled_window", "MLTSExplorer", "mlts_explorer", "StippleExplorer", "stipple_explorer",
+    "StrokePatternExplorer", "strokepattern_explorer",
 ]
