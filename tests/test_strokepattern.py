@@ -361,3 +361,28 @@ def test_exchange_keeps_strokes_valid_when_a_reference_element_has_zero_thicknes
     for seed in range(5):
         varied = exchange_parameters(result, analysis, 1.0, rng=seed)
         assert all(s.width > 0 for s in varied.strokes)
+
+
+def test_plot_strokes_leaves_the_hole_of_a_closed_stroke_empty():
+    """A loop dilates to a ring: its inside stays paper-white, the ring itself is inked (the drops, petals)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from paperlib.strokepattern import plot_strokes
+
+    angles = np.linspace(0.0, 2.0 * np.pi, 65)
+    loop = Stroke(np.column_stack([np.cos(angles), np.sin(angles)]), 0.2, "#000000")
+    fig = plt.figure(figsize=(2, 2), dpi=50)
+    ax = fig.add_axes((0, 0, 1, 1))
+    plot_strokes([loop], ax, autoscale=False)
+    ax.set_xlim(-1.5, 1.5)
+    ax.set_ylim(-1.5, 1.5)
+    ax.set_axis_off()
+    fig.canvas.draw()
+    pixels = np.asarray(fig.canvas.buffer_rgba())[..., :3]
+    plt.close(fig)
+    centre, on_ring = pixels[50, 50], pixels[50, int(round(50 + 50 * 1.0 / 1.5))]
+    assert centre.min() == 255
+    assert on_ring.max() < 64

@@ -39,7 +39,8 @@ def plot_strokes(items, ax=None, *, colors=None, alpha: float = 1.0, autoscale: 
         One per stroke (overrides the strokes' own colours), e.g. to colour strokes by cluster.
     """
     import matplotlib.pyplot as plt
-    from matplotlib.collections import PolyCollection
+    from matplotlib.collections import PathCollection
+    from matplotlib.path import Path
 
     ax = plt.gca() if ax is None else ax
     strokes = _flat_strokes(items)
@@ -48,12 +49,15 @@ def plot_strokes(items, ax=None, *, colors=None, alpha: float = 1.0, autoscale: 
     colors = [s.color for s in strokes] if colors is None else list(colors)
     if len(colors) != len(strokes):
         raise ValueError(f"colors needs one entry per stroke ({len(strokes)}), got {len(colors)}")
-    polygons, facecolors = [], []
+    paths, facecolors = [], []
+    # A closed stroke (a loop) dilates to a ring: its hole is an interior ring, drawn as a compound path
+    # (exterior counter-clockwise, holes clockwise: the non-zero rule leaves the holes empty).
     for ink, color in zip(_ink(strokes), colors):
-        for part in shapely.get_parts(ink):
-            polygons.append(np.asarray(part.exterior.coords))
+        for part in shapely.get_parts(shapely.orient_polygons(ink)):
+            rings = [part.exterior, *part.interiors]
+            paths.append(Path.make_compound_path(*(Path(np.asarray(r.coords), closed=True) for r in rings)))
             facecolors.append(color)
-    ax.add_collection(PolyCollection(polygons, facecolors=facecolors, edgecolors="none", alpha=alpha))
+    ax.add_collection(PathCollection(paths, facecolors=facecolors, edgecolors="none", alpha=alpha))
     if autoscale:
         ax.autoscale_view()
         ax.set_aspect("equal")
