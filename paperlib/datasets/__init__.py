@@ -13,6 +13,8 @@ licence and size:
   matplotlib (shapes with large-scale structure).
 - :mod:`.exemplars`: documented, seeded generators of element arrangements made of Hershey
   glyphs placed by point processes, with their ground truth (Hurtut 2009's exemplars).
+- :mod:`.sketches`: documented, seeded generators of synthetic leaf outlines (Simhon 2001, Fig. 5) and
+  hand-drawn-like sketches (Figs. 3, 4, 6).
 - :mod:`.strokepatterns`: documented, seeded generators of synthetic reference stroke patterns with
   their true elements and clustering scale (Barla 2006's hatchings, bars, drops, flowers).
 - :mod:`.stipple`: documented, seeded generators of synthetic hand-drawn-like stipple tone
@@ -35,6 +37,7 @@ from .exemplars import (
 from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey_glyphs
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
 from .outlines import glyph_outline, glyph_outlines, outline_names
+from .sketches import LEAF_KINDS, MAX_TREMOR, MAX_WOBBLE, hand_drawn_curve, leaf_outline, leaf_outlines
 from .stipple import stipple_tone_sheet, stipple_tone_texture
 from .strokepatterns import (
     StrokePatternExemplar,
@@ -51,6 +54,9 @@ from .strokepatterns import (
 
 __all__ = [
     "DEFAULT_STROKE_WIDTH",
+    "LEAF_KINDS",
+    "MAX_TREMOR",
+    "MAX_WOBBLE",
     "Exemplar",
     "GshhsPolygon",
     "amacrine_exemplar",
@@ -64,6 +70,7 @@ __all__ = [
     "glyph_outlines",
     "grayscale_image",
     "grayscale_names",
+    "hand_drawn_curve",
     "hatching_exemplar",
     "gshhs_polygons",
     "gshhs_resolutions",
@@ -71,6 +78,8 @@ __all__ = [
     "hershey_glyph",
     "hershey_glyphs",
     "lattice_exemplar",
+    "leaf_outline",
+    "leaf_outlines",
     "near_identical_exemplar",
     "outline_names",
     "photograph",

@@ -4,7 +4,14 @@ This floor imports no other part of paperlib; every method builds on it.
 """
 
 from .boxes import OrientedBox, OrientedBoxes, oriented_bounding_box, oriented_bounding_boxes
-from .curves import drop_repeated_vertices, oriented_ccw, resample_closed_curve, ring_centroid, signed_area
+from .curves import (
+    drop_repeated_vertices,
+    oriented_ccw,
+    resample_closed_curve,
+    resample_open_curve,
+    ring_centroid,
+    signed_area,
+)
 from .hausdorff import directed_hausdorff, directed_hausdorff_boxes, hausdorff, hausdorff_boxes
 from .strokes import Element, StackedStrokes, Stroke, as_elements, as_points, stack_strokes
 from .svg import read_svg, svg_string, write_svg
@@ -29,6 +36,7 @@ __all__ = [
     "oriented_ccw",
     "read_svg",
     "resample_closed_curve",
+    "resample_open_curve",
     "ring_centroid",
     "signed_area",
     "stack_strokes",

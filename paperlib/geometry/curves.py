@@ -12,7 +12,14 @@ import numpy as np
 
 from .strokes import as_points
 
-__all__ = ["drop_repeated_vertices", "oriented_ccw", "resample_closed_curve", "ring_centroid", "signed_area"]
+__all__ = [
+    "drop_repeated_vertices",
+    "oriented_ccw",
+    "resample_closed_curve",
+    "resample_open_curve",
+    "ring_centroid",
+    "signed_area",
+]
 
 
 def _shoelace_terms(ring: np.ndarray) -> np.ndarray:
@@ -83,12 +90,42 @@ def resample_closed_curve(ring, n_points: int) -> np.ndarray:
     ValueError
         If ``n_points`` is not an integer >= 3 or the curve has zero length.
     """
-    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 3:
-        raise ValueError(f"n_points must be an integer >= 3, got {n_points!r}")
+    _check_point_count(n_points, 3)
     ring = as_points(ring, name="ring", min_points=2)
     closed = np.vstack([ring, ring[:1]])
-    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(closed, axis=0).T))])
+    arc = _arc_lengths(closed)
+    return _points_at(closed, arc, np.arange(n_points) * (arc[-1] / n_points))
+
+
+def resample_open_curve(points, n_points: int) -> np.ndarray:
+    """Resample an open polyline at ``n_points`` points equally spaced in arc length.
+
+    The first and last output points are the polyline's end points; the others lie on it
+    at arc lengths ``k L / (n_points - 1)``.
+
+    Raises
+    ------
+    ValueError
+        If ``n_points`` is not an integer >= 2 or the polyline has zero length.
+    """
+    _check_point_count(n_points, 2)
+    points = as_points(points, name="points", min_points=2)
+    arc = _arc_lengths(points)
+    return _points_at(points, arc, np.linspace(0.0, arc[-1], n_points))
+
+
+def _check_point_count(n_points, minimum: int) -> None:
+    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < minimum:
+        raise ValueError(f"n_points must be an integer >= {minimum}, got {n_points!r}")
+
+
+def _arc_lengths(polyline: np.ndarray) -> np.ndarray:
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(polyline, axis=0).T))])
     if arc[-1] <= 0:
         raise ValueError("cannot resample a curve of zero length")
-    targets = np.arange(n_points) * (arc[-1] / n_points)
-    return np.column_stack([np.interp(targets, arc, closed[:, 0]), np.interp(targets, arc, closed[:, 1])])
+    return arc
+
+
+def _points_at(polyline: np.ndarray, arc: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """Points at the given arc lengths, by linear interpolation along the polyline."""
+    return np.column_stack([np.interp(targets, arc, polyline[:, 0]), np.interp(targets, arc, polyline[:, 1])])

@@ -1,0 +1,200 @@
+"""Curves as tangent-angle signals over arc length, and their multi-scale analysis (Simhon 2001, section 3).
+
+A curve is resampled at ``n`` points equally spaced in arc length; its *tangent angle* ``theta(t)`` is the
+direction of the segment from sample ``t`` to sample ``t + 1``, unwrapped so that it varies continuously (a
+counter-clockwise closed curve turns by ``2 pi`` in total). Integrating the angles with the sample spacing
+gives the curve back (:func:`integrate_angles`), so any signal of angles is a curve.
+
+The multi-scale analysis filters ``theta`` repeatedly with a low-pass filter: scale 0 is ``theta`` itself,
+scale ``s`` is ``s`` passes of the filter (section 3: *"Multi-scale analysis is performed by repeatedly
+filtering the training curves using a low-pass filter"*; the paper used *"a uniform average filter"*). On a
+closed curve the filter runs cyclically on ``theta`` minus its linear trend (the total turning spread evenly),
+which is periodic; the trend is added back, as a symmetric filter leaves a linear function unchanged.
+
+References
+----------
+.. [1] S. Simhon and G. Dudek, "On the Elaboration of Hand-Drawn Sketches", McGill University, 2001:
+   section 3 (eq. 1-2: the steering component as a low-pass filter of theta; the multi-scale analysis).
+"""
+
+from __future__ import annotations
+
+from math import comb
+
+import numpy as np
+import shapely
+from scipy.ndimage import convolve1d
+
+from ..geometry import as_points, resample_closed_curve, resample_open_curve
+
+__all__ = [
+    "check_curve",
+    "close_curve",
+    "filter_weights",
+    "integrate_angles",
+    "lowpass",
+    "multiscale_angles",
+    "resample_curve",
+    "resample_simple",
+    "tangent_angles",
+    "total_turning",
+    "wrap_angle",
+]
+
+
+def wrap_angle(angle):
+    """Angles wrapped to ``[-pi, pi)``: the signed difference of two directions."""
+    return (np.asarray(angle) + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def check_curve(points, *, closed: bool, min_points: int = 3, name: str = "curve") -> np.ndarray:
+    """Validate a drawn curve: finite ``(n, 2)`` points, no repeated point, not self-crossing.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The vertices; a closed curve is given without its first point repeated at the end (a repeated end
+        point is dropped).
+    closed : bool
+        Whether the last vertex joins the first.
+    min_points : int
+        The fewest vertices accepted.
+
+    Returns
+    -------
+    ndarray, shape (n, 2), float64
+
+    Raises
+    ------
+    ValueError
+        On NaN or infinite coordinates, fewer than ``min_points`` vertices, two consecutive equal vertices
+        (a zero-length segment, whose tangent is undefined), or a curve that crosses itself.
+    """
+    points = np.array(as_points(points, name=name, min_points=2))
+    if closed and len(points) > 2 and np.array_equal(points[0], points[-1]):
+        points = points[:-1]
+    if len(points) < min_points:
+        raise ValueError(f"{name} needs at least {min_points} points, got {len(points)}")
+    following = np.roll(points, -1, axis=0) if closed else points[1:]
+    repeated = np.flatnonzero(np.all(following == points[: len(following)], axis=1))
+    if repeated.size:
+        raise ValueError(f"{name} repeats a point at index {int(repeated[0])} (a zero-length segment)")
+    line = shapely.LinearRing(points) if closed else shapely.LineString(points)
+    if not line.is_simple:
+        raise ValueError(f"{name} crosses itself; draw a simple curve")
+    return points
+
+
+def resample_curve(points, n_points: int, *, closed: bool) -> np.ndarray:
+    """``n_points`` samples equally spaced in arc length along a closed ring or an open polyline."""
+    return resample_closed_curve(points, n_points) if closed else resample_open_curve(points, n_points)
+
+
+def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve") -> np.ndarray:
+    """Resample a simple curve at ``n_points`` samples equally spaced in arc length, keeping it simple.
+
+    Equal arc-length samples of a curve with features narrower than the spacing (a coastline's thin
+    peninsulas) can join across them and cross. When they do, the curve is first simplified (Douglas-Peucker
+    with topology preserved, shapely) at a quarter, a half, then one sample spacing, until the resampled
+    curve is simple; a curve that resamples simply is left as it is.
+
+    Raises
+    ------
+    ValueError
+        If the resampled curve still crosses itself (ask for more samples).
+    """
+    line = shapely.LinearRing(points) if closed else shapely.LineString(points)
+    for fraction in (0.0, 0.25, 0.5, 1.0):
+        simplified = np.asarray(line.simplify(fraction * line.length / n_points, preserve_topology=True).coords)
+        resampled = resample_curve(simplified[:-1] if closed else simplified, n_points, closed=closed)
+        if (shapely.LinearRing(resampled) if closed else shapely.LineString(resampled)).is_simple:
+            return resampled
+    raise ValueError(f"{name} crosses itself once resampled at {n_points} samples; use more samples")
+
+
+def tangent_angles(points, *, closed: bool) -> np.ndarray:
+    """Unwrapped tangent angle ``theta(t)`` of each segment (section 3).
+
+    Returns ``n`` angles for a closed curve of ``n`` samples (the last segment joins the last sample to the
+    first), ``n - 1`` for an open one.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    path = np.vstack([points, points[:1]]) if closed else points
+    steps = np.diff(path, axis=0)
+    if np.any(np.all(steps == 0.0, axis=1)):
+        raise ValueError("the curve has a zero-length segment: its tangent angle is undefined")
+    return np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
+
+
+def total_turning(theta) -> float:
+    """Total turning of a closed curve's angles, the closing turn from the last segment to the first included."""
+    theta = np.asarray(theta, dtype=np.float64)
+    return float(theta[-1] + wrap_angle(theta[0] - theta[-1]) - theta[0])
+
+
+def filter_weights(filter_width: int = 9, kernel="uniform") -> np.ndarray:
+    """The low-pass filter's weights, normalised to sum 1.
+
+    Parameters
+    ----------
+    filter_width : int
+        Odd number of taps of the built-in kernels (>= 1; 1 is no filtering).
+    kernel : {"uniform", "binomial"} or array_like
+        ``"uniform"``: the moving average of the paper; ``"binomial"``: binomial weights (a discrete
+        Gaussian); or any symmetric odd-length array of weights with a positive sum (``filter_width`` is then
+        ignored).
+    """
+    if isinstance(kernel, str):
+        if isinstance(filter_width, bool) or not isinstance(filter_width, (int, np.integer)):
+            raise ValueError(f"filter_width must be an odd integer >= 1, got {filter_width!r}")
+        if filter_width < 1 or filter_width % 2 == 0:
+            raise ValueError(f"filter_width must be an odd integer >= 1, got {filter_width!r}")
+        if kernel == "uniform":
+            weights = np.ones(filter_width)
+        elif kernel == "binomial":
+            weights = np.array([float(comb(filter_width - 1, k)) for k in range(filter_width)])
+        else:
+            raise ValueError(f"kernel must be 'uniform', 'binomial' or an array of weights, got {kernel!r}")
+    else:
+        weights = np.asarray(kernel, dtype=np.float64)
+        if weights.ndim != 1 or weights.size % 2 == 0 or not np.isfinite(weights).all():
+            raise ValueError("a kernel array must be one-dimensional, of odd length and finite")
+        if not np.allclose(weights, weights[::-1]) or weights.sum() <= 0:
+            raise ValueError("a kernel array must be symmetric with a positive sum (a low-pass filter)")
+    return weights / weights.sum()
+
+
+def lowpass(theta, weights, *, closed: bool) -> np.ndarray:
+    """One pass of the low-pass filter over a tangent-angle signal (cyclic on a closed curve)."""
+    theta = np.asarray(theta, dtype=np.float64)
+    if not closed:
+        return convolve1d(theta, weights, mode="nearest")
+    trend = total_turning(theta) * np.arange(theta.size) / theta.size
+    return convolve1d(theta - trend, weights, mode="wrap") + trend
+
+
+def multiscale_angles(theta, scales: int, weights, *, closed: bool) -> np.ndarray:
+    """The angles at ``scales`` scales, shape ``(scales, n)``: row ``s`` is ``s`` passes of the filter."""
+    levels = [np.asarray(theta, dtype=np.float64)]
+    for _ in range(scales - 1):
+        levels.append(lowpass(levels[-1], weights, closed=closed))
+    return np.stack(levels)
+
+
+def integrate_angles(theta, step: float, start=(0.0, 0.0)) -> np.ndarray:
+    """The polyline whose segments have length ``step`` and directions ``theta``: ``len(theta) + 1`` points."""
+    theta = np.asarray(theta, dtype=np.float64)
+    moves = step * np.column_stack([np.cos(theta), np.sin(theta)])
+    return np.vstack([np.zeros((1, 2)), np.cumsum(moves, axis=0)]) + np.asarray(start, dtype=np.float64)
+
+
+def close_curve(path: np.ndarray) -> np.ndarray:
+    """Distribute a closed curve's closing error along it (our correction of the paper's closure problem).
+
+    ``path`` holds ``n + 1`` points whose last should equal the first. Point ``k`` moves by ``-k / n`` of the
+    gap, so the curve closes exactly, the start stays, and every segment changes by the same small vector.
+    Returns the ``n`` points of the closed ring (the repeated end dropped).
+    """
+    gap = path[-1] - path[0]
+    n = len(path) - 1
+    return (path - np.outer(np.arange(n + 1) / n, gap))[:-1]

@@ -1,0 +1,325 @@
+"""Learning a class of curves: multi-scale, multi-order states and their similarity (Simhon 2001, section 3).
+
+Each training curve is resampled at ``samples_per_curve`` points equally spaced in arc length (so curves of
+every size have the same number of states), and its tangent angle is analysed at ``scales`` scales
+(:mod:`.curves`). The *state* at sample ``t`` is the ``scales x order`` matrix
+``gamma(t, s, tau) = theta_s(t - tau)``: the curve's recent history at every scale (the paper's Figure 1;
+``A = 1`` attribute, the tangent angle). Closed curves are read cyclically, so every sample has a state and a
+successor; on an open curve the first ``order - 1`` samples have no full history and the last has no
+successor.
+
+No transition matrix is built (section 3: *"the data is very sparse and the state-space is too large"*).
+The transitions out of a state go to the successors of the states most similar to it, weighted by the
+similarity of eq. (4),
+
+    D(gamma, gamma') = sum_{s, tau} w(s, tau) G(gamma(s, tau) - gamma'(s, tau)) / sum_{s, tau} w(s, tau),
+
+with ``G(x) = exp(-x^2 / (2 sigma^2))`` of the wrapped angle difference and ``W`` the weight matrix over
+scale and history. Training stores, for every state, its ``neighbours`` most similar states and their ``D``:
+the paper's *"linked list"* of transition probabilities. To find them without comparing every pair of states
+(``N^2`` comparisons of ``scales x order`` angles), states are embedded in a low-dimensional Euclidean space
+where the distance approximates ``sum w (angle difference)^2`` (the quadratic form of eq. (4) near a match):
+the history relative to the state's current coarse angle, reduced by PCA, plus that angle on a circle. A
+k-d tree gives a pool of candidates per state, and eq. (4) itself ranks the pool (numba).
+
+References
+----------
+.. [1] S. Simhon and G. Dudek, "On the Elaboration of Hand-Drawn Sketches", McGill University, 2001:
+   section 3 (Figure 1 and eq. 3-4: states over scale and history, transition probabilities from the
+   similarity of states), section 3.1 (40 training curves, 5 scales, order 20, a uniform average filter).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .._checks import positive_number
+from ._kernels import rank_by_similarity
+from .curves import (
+    check_curve,
+    close_curve,
+    filter_weights,
+    integrate_angles,
+    multiscale_angles,
+    resample_simple,
+    tangent_angles,
+    wrap_angle,
+)
+
+__all__ = ["SketchModel", "default_weights", "state_similarity", "train"]
+
+#: Candidates drawn from the k-d tree per neighbour kept, before eq. (4) ranks them.
+POOL_FACTOR = 6
+#: Fraction of the relative history's variance the PCA embedding keeps (and at most this many components).
+PCA_VARIANCE, PCA_MAX_COMPONENTS = 0.99, 16
+
+
+@dataclass(frozen=True)
+class SketchModel:
+    """A trained class of curves (:func:`train`): the states, their successors and most similar states.
+
+    Attributes
+    ----------
+    order, scales, steering_scale : int
+        History length O, number of scales S, and the scale whose angle is compared with the sketch.
+    weights : ndarray, shape (scales, order)
+        The weight matrix W of eq. (4).
+    similarity_sigma : float
+        Standard deviation (radians) of eq. (4)'s Gaussian G.
+    filter : ndarray
+        The low-pass filter's normalised weights.
+    closed : bool
+        Whether the training curves were read cyclically.
+    samples_per_curve : int
+        Samples of each resampled training curve.
+    curves : tuple of ndarray
+        The resampled training curves, ``(samples_per_curve, 2)`` each.
+    states : ndarray, shape (N, scales, order)
+        The states ``gamma(t, s, tau) = theta_s(t - tau)``, unwrapped along each curve.
+    angles : ndarray, shape (N, scales)
+        Each state's current angle at every scale (``states[:, :, 0]``).
+    curve, sample : ndarray of int, shape (N,)
+        Training curve and sample index of each state.
+    position : ndarray, shape (N,)
+        Arc-length fraction of the state along its curve, in [0, 1).
+    successor : ndarray of int, shape (N,)
+        The state one sample later along the same curve (-1 at the end of an open curve).
+    neighbours : ndarray of int, shape (N, k)
+        Each state's most similar states by eq. (4), most similar first (the state itself included).
+    similarity : ndarray, shape (N, k)
+        Their similarity D, in (0, 1].
+    extent_ratio : float
+        Median over the training curves of the radius of gyration of the curve at the steering scale (its
+        angles filtered, integrated back with the same arc length) over that of the curve itself, >= 1 for
+        wiggly curves: how much larger the steering curve spans than the detailed curve of the same length.
+        :func:`.steering.elaborate` uses it to give the elaboration the size of the sketch.
+    """
+
+    order: int
+    scales: int
+    steering_scale: int
+    weights: np.ndarray
+    similarity_sigma: float
+    filter: np.ndarray
+    closed: bool
+    samples_per_curve: int
+    curves: tuple
+    states: np.ndarray
+    angles: np.ndarray
+    curve: np.ndarray
+    sample: np.ndarray
+    position: np.ndarray
+    successor: np.ndarray
+    neighbours: np.ndarray
+    similarity: np.ndarray
+    extent_ratio: float
+
+    def __len__(self) -> int:
+        return len(self.successor)
+
+    @property
+    def steering_angles(self) -> np.ndarray:
+        """Each state's angle at the steering scale: what eq. (5) compares with the sketch."""
+        return self.angles[:, self.steering_scale]
+
+
+def default_weights(scales: int, order: int) -> np.ndarray:
+    """Our default weight matrix W (the paper gives none).
+
+    Section 3: *"We configure the weight matrix to maintain consistency over both high resolution details
+    early in the history and overall shape."* So the weight of scale ``s`` decays with the history ``tau`` as
+    ``exp(-tau / h_s)`` with ``h_s = order (s + 1) / scales``: the finest scale counts mostly over its most
+    recent samples, the coarsest over the whole history.
+    """
+    scale = np.arange(scales)[:, None]
+    history = np.arange(order)[None, :]
+    return np.exp(-history / (order * (scale + 1) / scales))
+
+
+def state_similarity(a, b, weights, sigma: float) -> np.ndarray:
+    """Eq. (4): the similarity of states ``a`` and ``b`` (arrays ``(..., scales, order)``), in (0, 1]."""
+    difference = wrap_angle(np.asarray(a) - np.asarray(b))
+    gaussian = np.exp(-(difference**2) / (2.0 * sigma**2))
+    weights = np.asarray(weights)
+    return (gaussian * weights).sum(axis=(-2, -1)) / weights.sum()
+
+
+def _check_count(value, name: str, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def _check_weights(weights, scales: int, order: int) -> np.ndarray:
+    if weights is None:
+        return default_weights(scales, order)
+    weights = np.array(weights, dtype=np.float64)
+    if weights.shape != (scales, order):
+        raise ValueError(f"weights must have shape (scales, order) = ({scales}, {order}), got {weights.shape}")
+    if not np.isfinite(weights).all() or (weights < 0).any() or weights.sum() <= 0:
+        raise ValueError("weights must be finite, non-negative and not all zero")
+    return weights
+
+
+def _curve_angles(curve, samples: int, scales: int, taps, closed: bool, name: str):
+    """One training curve resampled, and its angles at every scale, shape ``(samples or samples - 1, scales)``."""
+    points = resample_simple(curve, samples, closed=closed, name=name)
+    return multiscale_angles(tangent_angles(points, closed=closed), scales, taps, closed=closed).T, points
+
+
+def train(
+    curves,
+    *,
+    order: int = 20,
+    scales: int = 5,
+    filter_width: int = 9,
+    kernel="uniform",
+    steering_scale: int | None = None,
+    weights=None,
+    similarity_sigma: float = 0.1,
+    neighbours: int = 12,
+    samples_per_curve: int = 256,
+    closed: bool = True,
+) -> SketchModel:
+    """Learn a class of curves (section 3).
+
+    Parameters
+    ----------
+    curves : sequence of array_like, each (n_i, 2)
+        The training curves (closed rings without a repeated end point when ``closed``): simple, without
+        repeated points. Their sizes do not matter: each is simplified at its sample spacing and resampled
+        to ``samples_per_curve`` samples (:func:`.curves.resample_simple`).
+    order : int
+        The history O of a state (>= 1; the paper: 20).
+    scales : int
+        The number of scales S, the unfiltered angles included (>= 1; the paper: 5).
+    filter_width, kernel
+        The low-pass filter applied between consecutive scales (:func:`.curves.filter_weights`; the paper:
+        a uniform average).
+    steering_scale : int, optional
+        The scale compared with the sketch in eq. (5) (default: the coarsest, ``scales - 1``).
+    weights : array_like, shape (scales, order), optional
+        The weight matrix W of eq. (4) (default: :func:`default_weights`).
+    similarity_sigma : float
+        Standard deviation, in radians, of the Gaussian G of eq. (4).
+    neighbours : int
+        How many of the most similar states each state's transitions go through (>= 1).
+    samples_per_curve : int
+        Samples per training curve (> order).
+    closed : bool
+        Whether the training curves are closed (read cyclically).
+
+    Returns
+    -------
+    SketchModel
+
+    Raises
+    ------
+    ValueError
+        On an empty training set, order or scales < 1, a bad curve (NaN, repeated points, self-crossing,
+        fewer than 3 points), or other bad parameters.
+    """
+    order = _check_count(order, "order", 1)
+    scales = _check_count(scales, "scales", 1)
+    neighbours = _check_count(neighbours, "neighbours", 1)
+    samples = _check_count(samples_per_curve, "samples_per_curve", order + 2)
+    steering_scale = scales - 1 if steering_scale is None else _check_count(steering_scale, "steering_scale", 0)
+    if steering_scale >= scales:
+        raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
+    similarity_sigma = positive_number(similarity_sigma, "similarity_sigma")
+    weights = _check_weights(weights, scales, order)
+    taps = filter_weights(filter_width, kernel)
+    curves = list(curves) if curves is not None else []
+    if not curves:
+        raise ValueError("the training set is empty: give at least one curve")
+
+    angle_blocks, resampled = [], []
+    for k, curve in enumerate(curves):
+        curve = check_curve(curve, closed=closed, name=f"training curve {k}")
+        angles, points = _curve_angles(curve, samples, scales, taps, closed, f"training curve {k}")
+        angle_blocks.append(angles)
+        resampled.append(points)
+    table = _state_table(angle_blocks, order, closed)
+    neighbour_index, similarity = _most_similar(table["states"], table["angles"][:, steering_scale],
+                                                weights, similarity_sigma, neighbours)
+    return SketchModel(
+        order=order, scales=scales, steering_scale=steering_scale, weights=weights,
+        similarity_sigma=similarity_sigma, filter=taps, closed=closed, samples_per_curve=samples,
+        curves=tuple(resampled), states=table["states"], angles=table["angles"], curve=table["curve"], sample=table["sample"],
+        position=table["position"], successor=table["successor"], neighbours=neighbour_index,
+        similarity=similarity, extent_ratio=_extent_ratio(resampled, angle_blocks, steering_scale, closed),
+    )
+
+
+def _gyration_radius(points: np.ndarray) -> float:
+    return float(np.sqrt(((points - points.mean(axis=0)) ** 2).sum(axis=1).mean()))
+
+
+def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> float:
+    """Median ratio of the steering-scale curve's radius of gyration to the detailed curve's (see the model)."""
+    ratios = []
+    for points, angles in zip(curves, angle_blocks):
+        step = float(np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T).mean())
+        coarse = integrate_angles(angles[:, steering_scale], step, start=points[0])
+        coarse = close_curve(coarse) if closed else coarse
+        ratios.append(_gyration_radius(coarse) / _gyration_radius(points))
+    return float(np.median(ratios))
+
+
+def _state_table(angle_blocks, order: int, closed: bool) -> dict:
+    """Every state of every curve: current angles, history matrix, curve, sample, position, successor."""
+    columns = {key: [] for key in ("angles", "states", "curve", "sample", "position", "successor")}
+    first_state = 0
+    for k, angles in enumerate(angle_blocks):
+        n = len(angles)
+        samples = np.arange(n) if closed else np.arange(order - 1, n)
+        history = samples[:, None] - np.arange(order)
+        if closed:
+            # the history of an early sample wraps to the curve's end: unwrap it by the curve's total turning
+            turning = angles[-1, :] + wrap_angle(angles[0, :] - angles[-1, :]) - angles[0, :]
+            laps = np.floor_divide(history, n)
+            states = angles[history % n] + laps[..., None] * turning
+        else:
+            states = angles[history]
+        successor = first_state + np.arange(1, len(samples) + 1)
+        if closed:
+            successor[-1] = first_state
+        else:
+            successor[-1] = -1
+        columns["angles"].append(angles[samples])
+        columns["states"].append(np.transpose(states, (0, 2, 1)))
+        columns["curve"].append(np.full(len(samples), k))
+        columns["sample"].append(samples)
+        columns["position"].append(samples / n)
+        columns["successor"].append(successor)
+        first_state += len(samples)
+    return {key: np.ascontiguousarray(np.concatenate(value)) for key, value in columns.items()}
+
+
+def _embedding(states: np.ndarray, anchor: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Euclidean coordinates whose squared distances approximate ``sum w (angle difference)^2``."""
+    root = np.sqrt(weights).ravel()
+    relative = (states - anchor[:, None, None]).reshape(len(states), -1) * root
+    centred = relative - relative.mean(axis=0)
+    # principal axes from the small (scales * order)^2 covariance matrix, largest variance first
+    variance, axes = np.linalg.eigh(centred.T @ centred)
+    variance, axes = np.clip(variance[::-1], 0.0, None), axes[:, ::-1]
+    explained = np.cumsum(variance) / max(float(variance.sum()), 1e-300)
+    keep = min(int(np.searchsorted(explained, PCA_VARIANCE)) + 1, PCA_MAX_COMPONENTS, len(variance))
+    circle = np.sqrt(weights.sum()) * np.column_stack([np.cos(anchor), np.sin(anchor)])
+    return np.hstack([centred @ axes[:, :keep], circle])
+
+
+def _most_similar(states, anchor, weights, sigma: float, neighbours: int):
+    """Each state's ``neighbours`` most similar states by eq. (4), from a k-d tree pool."""
+    n = len(states)
+    neighbours = min(neighbours, n)
+    pool = min(POOL_FACTOR * neighbours, n)
+    coordinates = _embedding(states, anchor, weights)
+    _, candidates = cKDTree(coordinates).query(coordinates, k=pool, workers=-1)
+    candidates = np.asarray(candidates, dtype=np.int64).reshape(n, pool)
+    flat = np.ascontiguousarray(states.reshape(n, -1) % (2.0 * np.pi))   # directions in [0, 2 pi)
+    return rank_by_similarity(flat, np.ascontiguousarray(weights.ravel()), candidates, sigma, neighbours)

@@ -1,0 +1,260 @@
+"""Elaborating a sketch: the Markov chain steered by the hand-drawn curve (Simhon 2001, section 3).
+
+The sketch is resampled at ``n_samples`` points equally spaced in arc length; its tangent angle ``phi_in(t)``
+steers a chain whose states are the training states of a :class:`~.model.SketchModel`. Section 3's
+algorithm, as :func:`elaborate` runs it:
+
+1. start with equal probabilities on every training state;
+2. condition on the sketch, eq. (5): ``p_i <- p_i G(phi_in(t) - theta_{s,i})`` with ``theta_{s,i}`` the
+   state's angle at the steering scale and ``G`` a Gaussian of standard deviation ``sigma`` (the *variance
+   parameter*: large means little confidence in the sketch);
+3. threshold: keep the ``top`` most probable states, renormalised;
+4. instantiate the sample: the finest-scale angle of the most probable state (``mode="max"``, the paper's
+   choice) or of a state drawn with its probability (``mode="sample"``: different seeds give different
+   elaborations);
+5. for every next sample, predict with the transition probabilities, eq. (3): the probability of each
+   candidate ``j`` flows to the successors of its most similar states, in proportion to their similarity
+   D (eq. 4); then condition and threshold as in 2-3, and instantiate as in 4.
+
+The instantiated angles are integrated from the sketch's first point with the sketch's sample spacing,
+stretched by default by the training class's ratio of coarse to detailed extent (``match_extent``, our
+addition: the steering curve has the detailed curve's arc length but fewer wiggles, so it spans more). The
+paper reports *"issues with curve closures [...] due to accumulated errors"*; ``closure="distribute"``
+(our correction, an option) spreads the gap between the curve's end and its start evenly along the curve.
+
+Two situations the paper does not cover get a documented answer: when no predicted state survives the
+conditioning (all probabilities underflow, the chain has lost the sketch), the chain restarts from step 2
+over all states and :attr:`Elaboration.restarts` counts it; with a search window ``window`` (the paper's
+``Delta t`` for non-stationary classes), only states whose arc-length position is within ``window`` of the
+sketch's ``t / n`` take part.
+
+References
+----------
+.. [1] S. Simhon and G. Dudek, "On the Elaboration of Hand-Drawn Sketches", McGill University, 2001:
+   section 3 (eq. 3: the non-stationary chain; eq. 5: conditioning on the sketch; the algorithm's summary;
+   the search range Delta t), section 3.1 (closure problems), Figures 3, 4 and 6.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._checks import positive_number
+from ..geometry import read_svg
+from ._kernels import steer
+from .curves import (
+    check_curve,
+    close_curve,
+    integrate_angles,
+    multiscale_angles,
+    resample_curve,
+    tangent_angles,
+    wrap_angle,
+)
+from .model import SketchModel
+
+__all__ = ["Elaboration", "coarsen", "copied_runs", "elaborate", "sketch_from_svg"]
+
+MODES = ("max", "sample")
+CLOSURES = (None, "distribute")
+COARSE = ("state", "sketch")
+
+
+@dataclass(frozen=True)
+class Elaboration:
+    """An elaborated curve (:func:`elaborate`).
+
+    Attributes
+    ----------
+    points : ndarray, shape (n, 2) or (n + 1, 2)
+        The elaborated curve: ``n`` points of a closed ring (no repeated end point) when the sketch is
+        closed, ``n + 1`` points of an open polyline otherwise.
+    angles : ndarray, shape (n,) or (n - 1,)
+        Its tangent angles (the instantiated finest-scale angles, unwrapped).
+    sketch : ndarray
+        The sketch resampled at uniform arc length.
+    steering : ndarray
+        The sketch's tangent angles ``phi_in``.
+    states : ndarray of int
+        The training state instantiated at every sample.
+    closed : bool
+    closing_gap : float
+        Distance between the end and the start of the integrated curve before any closure correction,
+        divided by the sketch's length (0 for an open sketch).
+    restarts : int
+        How often the chain lost every candidate and restarted from the sketch alone.
+    """
+
+    points: np.ndarray
+    angles: np.ndarray
+    sketch: np.ndarray
+    steering: np.ndarray
+    states: np.ndarray
+    closed: bool
+    closing_gap: float
+    restarts: int
+
+
+def _check_choice(value, name: str, choices) -> None:
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {choices}, got {value!r}")
+
+
+def _instantiated_angles(model: SketchModel, states: np.ndarray, phi: np.ndarray, keep_coarse: str) -> np.ndarray:
+    """The output angle of every sample: the state's finest angle, on the turn nearest the sketch's angle.
+
+    A state's finest and steering angles are unwrapped along the same training curve, so the state's
+    *detail* ``theta_0 - theta_s`` needs no wrapping. ``keep_coarse="state"`` (the paper) outputs
+    ``theta_0``: the sketch's angle, plus the conditioning error ``theta_s - phi_in`` (within about
+    ``sigma``), plus the detail. ``"sketch"`` drops the conditioning error: ``phi_in + detail``.
+    """
+    detail = model.angles[states, 0] - model.steering_angles[states]
+    if keep_coarse == "sketch":
+        return phi + detail
+    return phi + wrap_angle(model.steering_angles[states] - phi) + detail
+
+
+def elaborate(
+    model: SketchModel,
+    sketch,
+    *,
+    closed: bool | None = None,
+    n_samples: int = 1000,
+    sigma: float = 0.1,
+    top: int = 20,
+    mode: str = "max",
+    window: float | None = None,
+    closure: str | None = None,
+    match_extent: bool = True,
+    coarse: str = "state",
+    rng=None,
+) -> Elaboration:
+    """Elaborate a hand-drawn sketch into a detailed curve of the model's class (section 3).
+
+    Parameters
+    ----------
+    model : SketchModel
+        A trained class (:func:`.model.train`).
+    sketch : array_like, shape (m, 2)
+        The user's curve: at least ``model.order`` points, no repeated point, not crossing itself.
+    closed : bool, optional
+        Whether the sketch is closed (default: as the training curves).
+    n_samples : int
+        Samples of the elaboration (> model.order). One sample of the sketch takes one training sample's
+        detail, so a sketch of ``n_samples`` samples gets the detail of ``n_samples / samples_per_curve``
+        training curves.
+    sigma : float
+        Standard deviation (radians) of the Gaussian of eq. (5): the user's confidence in the sketch.
+    top : int
+        States kept after each thresholding (>= 1).
+    mode : {"max", "sample"}
+        Instantiate the most probable state (the paper's choice) or draw one.
+    window : float, optional
+        Search window Delta t as a fraction of the curve (in (0, 0.5]): for non-stationary classes.
+    closure : {None, "distribute"}
+        ``"distribute"`` closes a closed elaboration by spreading its end gap evenly along it.
+    match_extent : bool
+        Integrate with the sketch's sample spacing times ``model.extent_ratio`` (our addition, on by
+        default), so that the detailed curve spans as much as the sketch; ``False`` keeps the sketch's
+        spacing as the paper does, and the detail's wiggles then shrink the curve.
+    coarse : {"state", "sketch"}
+        The coarse direction of each output sample: the instantiated state's (``"state"``, the paper: the
+        state's finest angle as it is) or the sketch's (``"sketch"``, our option: the sketch's angle plus the
+        state's detail, finest minus steering-scale angle), which removes the conditioning error that
+        accumulates into drift.
+    rng : None, int or numpy.random.Generator
+        Drives ``mode="sample"``.
+
+    Returns
+    -------
+    Elaboration
+
+    Raises
+    ------
+    ValueError
+        On a bad sketch (too few points, NaN, repeated points, self-crossing) or bad parameters.
+    """
+    if not isinstance(model, SketchModel):
+        raise ValueError("model must be a SketchModel (from paperlib.sketch.train)")
+    closed = model.closed if closed is None else bool(closed)
+    sketch = check_curve(sketch, closed=closed, min_points=max(model.order, 3), name="sketch")
+    if isinstance(n_samples, bool) or not isinstance(n_samples, (int, np.integer)) or n_samples <= model.order:
+        raise ValueError(f"n_samples must be an integer above the order ({model.order}), got {n_samples!r}")
+    sigma = positive_number(sigma, "sigma")
+    if isinstance(top, bool) or not isinstance(top, (int, np.integer)) or top < 1:
+        raise ValueError(f"top must be an integer >= 1, got {top!r}")
+    _check_choice(mode, "mode", MODES)
+    _check_choice(closure, "closure", CLOSURES)
+    _check_choice(coarse, "coarse", COARSE)
+    if window is not None:
+        window = positive_number(window, "window")
+        if window > 0.5:
+            raise ValueError(f"window must be at most 0.5 (half the curve), got {window}")
+    if closure is not None and not closed:
+        raise ValueError("closure applies to closed sketches only")
+
+    resampled = resample_curve(sketch, int(n_samples), closed=closed)
+    phi = tangent_angles(resampled, closed=closed)
+    uniforms = np.random.default_rng(rng).random(phi.size)
+    states, restarts = steer(
+        phi, np.ascontiguousarray(model.steering_angles), model.position, model.successor, model.neighbours,
+        model.similarity, sigma, int(top), mode == "sample", uniforms, -1.0 if window is None else window,
+        model.closed,
+    )
+    if restarts < 0:
+        raise ValueError("no training state lies in the search window: widen window")
+    angles = _instantiated_angles(model, states, phi, coarse)
+    segments = np.diff(np.vstack([resampled, resampled[:1]]) if closed else resampled, axis=0)
+    step = float(np.hypot(*segments.T).mean()) * (model.extent_ratio if match_extent else 1.0)
+    path = integrate_angles(angles, step, start=resampled[0])
+    gap = float(np.hypot(*(path[-1] - path[0])) / (step * angles.size)) if closed else 0.0
+    if closed:
+        path = close_curve(path) if closure == "distribute" else path[:-1]
+    return Elaboration(points=path, angles=angles, sketch=resampled, steering=phi, states=states,
+                       closed=closed, closing_gap=gap, restarts=int(restarts))
+
+
+def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: bool | None = None) -> np.ndarray:
+    """The curve at the model's steering scale: the sketch a user would draw of it (eq. 1-2, phi = psi(theta)).
+
+    The curve is resampled (at ``n_samples`` points, default ``model.samples_per_curve``), its angles are
+    filtered ``steering_scale`` times with the model's filter and integrated back from its first point; a
+    closed curve is closed by distributing its end gap (:func:`.curves.close_curve`).
+    """
+    closed = model.closed if closed is None else bool(closed)
+    curve = check_curve(curve, closed=closed, name="curve")
+    n_samples = model.samples_per_curve if n_samples is None else n_samples
+    points = resample_curve(curve, n_samples, closed=closed)
+    theta = tangent_angles(points, closed=closed)
+    coarse = multiscale_angles(theta, model.steering_scale + 1, model.filter, closed=closed)[-1]
+    lengths = np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T)
+    path = integrate_angles(coarse, float(lengths.mean()), start=points[0])
+    return close_curve(path) if closed else path
+
+
+def copied_runs(model: SketchModel, states) -> np.ndarray:
+    """Lengths (in samples) of the runs an elaboration copies from one training curve.
+
+    A run continues while each instantiated state is the training successor of the previous one, so a run
+    of length ``L`` reproduces ``L`` consecutive training samples. The longest run measures novelty.
+    """
+    states = np.asarray(states)
+    follows = model.successor[states[:-1]] == states[1:]
+    boundaries = np.flatnonzero(np.concatenate([[True], ~follows, [True]]))
+    return np.diff(boundaries)
+
+
+def sketch_from_svg(source, *, tolerance: float = 0.5) -> tuple[np.ndarray, bool]:
+    """A user's sketch from an SVG file or string: the longest stroke's points, and whether it is closed.
+
+    A stroke whose last point repeats its first (a closed path, a polygon, a circle) is closed; the
+    repeated point is dropped. Coordinates are y-up (:func:`paperlib.geometry.read_svg`).
+    """
+    strokes = [stroke for element in read_svg(source, tolerance=tolerance) for stroke in element.strokes]
+    stroke = max(strokes, key=lambda s: float(np.hypot(*np.diff(s.points, axis=0).T).sum()) if len(s.points) > 1
+                 else 0.0)
+    points = np.array(stroke.points)
+    closed = len(points) > 3 and np.allclose(points[0], points[-1])
+    return (points[:-1] if closed else points), bool(closed)
