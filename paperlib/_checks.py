@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
+from numbers import Integral
 
-__all__ = ["positive_number"]
+__all__ = ["integer_at_least", "positive_number"]
 
 
 def positive_number(value, name: str, *, allow_zero: bool = False) -> float:
@@ -17,3 +18,10 @@ def positive_number(value, name: str, *, allow_zero: bool = False) -> float:
         expected = "a non-negative finite number" if allow_zero else "a positive finite number"
         raise ValueError(f"{name} must be {expected}, got {value!r}")
     return number
+
+
+def integer_at_least(value, name: str, minimum: int) -> int:
+    """``value`` as an int, or a ValueError naming ``name`` unless it is an integer (not a bool) >= ``minimum``."""
+    if isinstance(value, bool) or not isinstance(value, Integral) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)

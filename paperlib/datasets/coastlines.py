@@ -63,6 +63,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from paperlib._checks import integer_at_least
 from paperlib.geometry import as_points, drop_repeated_vertices, oriented_ccw, ring_centroid
 
 __all__ = ["GshhsPolygon", "gshhs_resolutions", "gshhs_polygons", "coastlines"]
@@ -299,12 +300,6 @@ def _project_local(lonlat: np.ndarray, projection: str) -> np.ndarray:
     return as_points(oriented_ccw(xy - ring_centroid(xy)), name="coastline")
 
 
-def _check_count(value, name: str, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(value)
-
-
 def coastlines(
     n: int = 40,
     min_points: int = 300,
@@ -355,8 +350,8 @@ def coastlines(
         On a bad argument, or when fewer than ``n`` polygons have ``min_points``
         vertices (the message says how many do).
     """
-    n = _check_count(n, "n", 1)
-    min_points = _check_count(min_points, "min_points", 3)
+    n = integer_at_least(n, "n", 1)
+    min_points = integer_at_least(min_points, "min_points", 3)
     if projection not in _PROJECTIONS:
         raise ValueError(f"projection must be one of {_PROJECTIONS}, got {projection!r}")
     rings = _land_rings(_check_resolution(resolution))

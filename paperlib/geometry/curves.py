@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._checks import integer_at_least
 from .strokes import as_points
 
 __all__ = [
@@ -90,7 +91,7 @@ def resample_closed_curve(ring, n_points: int) -> np.ndarray:
     ValueError
         If ``n_points`` is not an integer >= 3 or the curve has zero length.
     """
-    _check_point_count(n_points, 3)
+    n_points = integer_at_least(n_points, "n_points", 3)
     ring = as_points(ring, name="ring", min_points=2)
     closed = np.vstack([ring, ring[:1]])
     arc = _arc_lengths(closed)
@@ -108,15 +109,10 @@ def resample_open_curve(points, n_points: int) -> np.ndarray:
     ValueError
         If ``n_points`` is not an integer >= 2 or the polyline has zero length.
     """
-    _check_point_count(n_points, 2)
+    n_points = integer_at_least(n_points, "n_points", 2)
     points = as_points(points, name="points", min_points=2)
     arc = _arc_lengths(points)
     return _points_at(points, arc, np.linspace(0.0, arc[-1], n_points))
-
-
-def _check_point_count(n_points, minimum: int) -> None:
-    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < minimum:
-        raise ValueError(f"n_points must be an integer >= {minimum}, got {n_points!r}")
 
 
 def _arc_lengths(polyline: np.ndarray) -> np.ndarray:

@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .._checks import positive_number
+from .._checks import integer_at_least, positive_number
 from ._kernels import rank_by_similarity
 from .curves import (
     check_curve,
@@ -147,12 +147,6 @@ def state_similarity(a, b, weights, sigma: float) -> np.ndarray:
     return (gaussian * weights).sum(axis=(-2, -1)) / weights.sum()
 
 
-def _check_count(value, name: str, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
-    return int(value)
-
-
 def _check_weights(weights, scales: int, order: int) -> np.ndarray:
     if weights is None:
         return default_weights(scales, order)
@@ -222,11 +216,11 @@ def train(
         On an empty training set, order or scales < 1, a bad curve (NaN, repeated points, self-crossing,
         fewer than 3 points), or other bad parameters.
     """
-    order = _check_count(order, "order", 1)
-    scales = _check_count(scales, "scales", 1)
-    neighbours = _check_count(neighbours, "neighbours", 1)
-    samples = _check_count(samples_per_curve, "samples_per_curve", order + 2)
-    steering_scale = scales - 1 if steering_scale is None else _check_count(steering_scale, "steering_scale", 0)
+    order = integer_at_least(order, "order", 1)
+    scales = integer_at_least(scales, "scales", 1)
+    neighbours = integer_at_least(neighbours, "neighbours", 1)
+    samples = integer_at_least(samples_per_curve, "samples_per_curve", order + 2)
+    steering_scale = scales - 1 if steering_scale is None else integer_at_least(steering_scale, "steering_scale", 0)
     if steering_scale >= scales:
         raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
     similarity_sigma = positive_number(similarity_sigma, "similarity_sigma")

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import positive_number
+from .._checks import integer_at_least, positive_number
 from ..geometry import read_svg
 from ._kernels import steer
 from .curves import (
@@ -180,11 +180,9 @@ def elaborate(
         raise ValueError("model must be a SketchModel (from paperlib.sketch.train)")
     closed = model.closed if closed is None else bool(closed)
     sketch = check_curve(sketch, closed=closed, min_points=max(model.order, 3), name="sketch")
-    if isinstance(n_samples, bool) or not isinstance(n_samples, (int, np.integer)) or n_samples <= model.order:
-        raise ValueError(f"n_samples must be an integer above the order ({model.order}), got {n_samples!r}")
+    n_samples = integer_at_least(n_samples, "n_samples (above the model's order)", model.order + 1)
     sigma = positive_number(sigma, "sigma")
-    if isinstance(top, bool) or not isinstance(top, (int, np.integer)) or top < 1:
-        raise ValueError(f"top must be an integer >= 1, got {top!r}")
+    top = integer_at_least(top, "top", 1)
     _check_choice(mode, "mode", MODES)
     _check_choice(closure, "closure", CLOSURES)
     _check_choice(coarse, "coarse", COARSE)
@@ -195,12 +193,12 @@ def elaborate(
     if closure is not None and not closed:
         raise ValueError("closure applies to closed sketches only")
 
-    resampled = resample_curve(sketch, int(n_samples), closed=closed)
+    resampled = resample_curve(sketch, n_samples, closed=closed)
     phi = tangent_angles(resampled, closed=closed)
     uniforms = np.random.default_rng(rng).random(phi.size)
     states, restarts = steer(
         phi, np.ascontiguousarray(model.steering_angles), model.position, model.successor, model.neighbours,
-        model.similarity, sigma, int(top), mode == "sample", uniforms, -1.0 if window is None else window,
+        model.similarity, sigma, top, mode == "sample", uniforms, -1.0 if window is None else window,
         model.closed,
     )
     if restarts < 0:
