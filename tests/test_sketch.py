@@ -11,10 +11,13 @@ from paperlib.sketch import (
     default_weights,
     elaborate,
     filter_weights,
+    gyration_radius,
     integrate_angles,
     lowpass,
+    match_size,
     multiscale_angles,
     resample_curve,
+    resample_simple,
     sketch_from_svg,
     state_similarity,
     tangent_angles,
@@ -282,12 +285,31 @@ def test_closure_option_closes_the_curve(model):
     assert plain.closing_gap == closed.closing_gap > 0
 
 
+def test_match_size_moves_and_scales_onto_the_reference():
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    moved = match_size(square, 3.0 * square + [5.0, -2.0])
+    np.testing.assert_allclose(moved, 3.0 * square + [5.0, -2.0], atol=1e-12)
+    assert gyration_radius(square) == pytest.approx(np.sqrt(0.5))
+
+
+def test_coarse_version_keeps_the_size_and_place_of_the_curve():
+    curve = resample_curve(wiggly(teeth=40, depth=0.08), 200, closed=True)
+    model = train([curve], order=4, scales=4, samples_per_curve=200)
+    sketch, as_trained = coarsen(curve, model), resample_simple(curve, 200, closed=True)
+    assert gyration_radius(sketch) == pytest.approx(gyration_radius(as_trained), rel=1e-12)
+    np.testing.assert_allclose(sketch.mean(axis=0), as_trained.mean(axis=0), atol=1e-12)
+    assert total_turning(tangent_angles(sketch, closed=True)) == pytest.approx(2 * np.pi)
+
+
 def test_open_sketch_gives_an_open_curve(model):
     t = np.linspace(0.0, 3.0, 60)
     stroke = np.column_stack([t, 0.3 * np.sin(2 * t)])
     result = elaborate(model, stroke, closed=False, n_samples=100)
     assert result.points.shape == (100, 2) and not result.closed and result.closing_gap == 0.0
-    np.testing.assert_array_equal(result.points[0], stroke[0])
+    np.testing.assert_allclose(result.points.mean(axis=0), result.sketch.mean(axis=0), atol=1e-12)
+    assert gyration_radius(result.points) == pytest.approx(gyration_radius(result.sketch), rel=1e-12)
+    as_drawn = elaborate(model, stroke, closed=False, n_samples=100, match_extent=False)
+    np.testing.assert_array_equal(as_drawn.points[0], stroke[0])
 
 
 def test_elaborate_rejects_bad_input(model):
@@ -319,3 +341,16 @@ def test_sketch_from_svg():
     np.testing.assert_allclose(points[2], [50.0, -50.0])    # y up
     points, closed = sketch_from_svg('<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 9 0 L 9 9 L 0 9 Z"/></svg>')
     assert closed and points.shape == (4, 2)
+
+
+def test_copied_runs_with_slack_follow_stutters_and_skips():
+    model = train([circle(40), wiggly(lobes=3, depth=0.2)], order=4, scales=2, samples_per_curve=40)
+    exact = np.array([3, 4, 5, 6, 50, 51])
+    np.testing.assert_array_equal(copied_runs(model, exact), [4, 2])
+    stutter = np.array([3, 4, 4, 6, 7, 50])            # repeat, skip one, then another curve
+    np.testing.assert_array_equal(copied_runs(model, stutter), [2, 1, 2, 1])
+    np.testing.assert_array_equal(copied_runs(model, stutter, slack=1), [5, 1])
+    wraps = np.array([38, 39, 0, 1])                   # closed curves continue across their start
+    np.testing.assert_array_equal(copied_runs(model, wraps, slack=1), [4])
+    with pytest.raises(ValueError, match="slack"):
+        copied_runs(model, exact, slack=-1)

@@ -6,14 +6,18 @@
   state's most similar states found through a k-d tree.
 - :mod:`.steering` (section 3, eq. 3 and 5): the steered chain that elaborates a sketch, coarse versions of
   curves (the steering component), novelty measures, SVG input.
+- :mod:`.measures` (section 3.1's claims): Hausdorff distance to the sketch, turning distribution,
+  box-counting dimension.
 """
 
 from .curves import (
     check_curve,
     close_curve,
     filter_weights,
+    gyration_radius,
     integrate_angles,
     lowpass,
+    match_size,
     multiscale_angles,
     resample_curve,
     resample_simple,
@@ -21,10 +25,16 @@ from .curves import (
     total_turning,
     wrap_angle,
 )
+from .measures import box_counting_dimension, curve_hausdorff, densify, turning_ks, turning_per_sample
 from .model import SketchModel, default_weights, state_similarity, train
 from .steering import Elaboration, coarsen, copied_runs, elaborate, sketch_from_svg
 
 __all__ = [
+    "box_counting_dimension",
+    "curve_hausdorff",
+    "densify",
+    "turning_ks",
+    "turning_per_sample",
     "Elaboration",
     "SketchModel",
     "check_curve",
@@ -34,8 +44,10 @@ __all__ = [
     "default_weights",
     "elaborate",
     "filter_weights",
+    "gyration_radius",
     "integrate_angles",
     "lowpass",
+    "match_size",
     "multiscale_angles",
     "resample_curve",
     "resample_simple",

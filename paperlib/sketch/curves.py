@@ -31,8 +31,10 @@ __all__ = [
     "check_curve",
     "close_curve",
     "filter_weights",
+    "gyration_radius",
     "integrate_angles",
     "lowpass",
+    "match_size",
     "multiscale_angles",
     "resample_curve",
     "resample_simple",
@@ -186,6 +188,25 @@ def integrate_angles(theta, step: float, start=(0.0, 0.0)) -> np.ndarray:
     theta = np.asarray(theta, dtype=np.float64)
     moves = step * np.column_stack([np.cos(theta), np.sin(theta)])
     return np.vstack([np.zeros((1, 2)), np.cumsum(moves, axis=0)]) + np.asarray(start, dtype=np.float64)
+
+
+def gyration_radius(points) -> float:
+    """Root mean square distance of the points to their centroid: a curve's size, robust to its wiggles."""
+    points = np.asarray(points, dtype=np.float64)
+    return float(np.sqrt(((points - points.mean(axis=0)) ** 2).sum(axis=1).mean()))
+
+
+def match_size(points, reference) -> np.ndarray:
+    """``points`` scaled about their centroid to the radius of gyration of ``reference``, moved onto its centroid.
+
+    A detailed curve and a smooth curve of the same arc length differ in size (the detail's wiggles use up
+    length), so a coarse version or an elaboration is brought to the size and place of the curve it stands
+    for. Both are sets of samples equally spaced in arc length, so their centroids are the curves'.
+    """
+    points, reference = np.asarray(points, dtype=np.float64), np.asarray(reference, dtype=np.float64)
+    centre = points.mean(axis=0)
+    scale = gyration_radius(reference) / gyration_radius(points)
+    return (points - centre) * scale + reference.mean(axis=0)
 
 
 def close_curve(path: np.ndarray) -> np.ndarray:

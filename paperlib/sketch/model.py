@@ -42,6 +42,7 @@ from .curves import (
     check_curve,
     close_curve,
     filter_weights,
+    gyration_radius,
     integrate_angles,
     multiscale_angles,
     resample_simple,
@@ -248,10 +249,6 @@ def train(
     )
 
 
-def _gyration_radius(points: np.ndarray) -> float:
-    return float(np.sqrt(((points - points.mean(axis=0)) ** 2).sum(axis=1).mean()))
-
-
 def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> float:
     """Median ratio of the steering-scale curve's radius of gyration to the detailed curve's (see the model)."""
     ratios = []
@@ -259,7 +256,7 @@ def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> fl
         step = float(np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T).mean())
         coarse = integrate_angles(angles[:, steering_scale], step, start=points[0])
         coarse = close_curve(coarse) if closed else coarse
-        ratios.append(_gyration_radius(coarse) / _gyration_radius(points))
+        ratios.append(gyration_radius(coarse) / gyration_radius(points))
     return float(np.median(ratios))
 
 

@@ -16,10 +16,10 @@ algorithm, as :func:`elaborate` runs it:
    candidate ``j`` flows to the successors of its most similar states, in proportion to their similarity
    D (eq. 4); then condition and threshold as in 2-3, and instantiate as in 4.
 
-The instantiated angles are integrated from the sketch's first point with the sketch's sample spacing,
-stretched by default by the training class's ratio of coarse to detailed extent (``match_extent``, our
-addition: the steering curve has the detailed curve's arc length but fewer wiggles, so it spans more). The
-paper reports *"issues with curve closures [...] due to accumulated errors"*; ``closure="distribute"``
+The instantiated angles are integrated from the sketch's first point with the sketch's sample spacing. By
+default the result is then scaled to the sketch's radius of gyration and moved onto its centroid
+(``match_extent``, our addition: the detail's wiggles use up arc length, so a detailed curve as long as the
+sketch spans less, by about ``model.extent_ratio``, and the conditioning error drifts it). The paper reports *"issues with curve closures [...] due to accumulated errors"*; ``closure="distribute"``
 (our correction, an option) spreads the gap between the curve's end and its start evenly along the curve.
 
 Two situations the paper does not cover get a documented answer: when no predicted state survives the
@@ -48,8 +48,10 @@ from .curves import (
     check_curve,
     close_curve,
     integrate_angles,
+    match_size,
     multiscale_angles,
     resample_curve,
+    resample_simple,
     tangent_angles,
     wrap_angle,
 )
@@ -156,9 +158,11 @@ def elaborate(
     closure : {None, "distribute"}
         ``"distribute"`` closes a closed elaboration by spreading its end gap evenly along it.
     match_extent : bool
-        Integrate with the sketch's sample spacing times ``model.extent_ratio`` (our addition, on by
-        default), so that the detailed curve spans as much as the sketch; ``False`` keeps the sketch's
-        spacing as the paper does, and the detail's wiggles then shrink the curve.
+        Scale the elaboration about its centroid to the sketch's radius of gyration and move it onto the
+        sketch's centroid (our addition, on by default, :func:`.curves.match_size`). ``False`` integrates
+        from the sketch's first point with the sketch's sample spacing, as the paper does: the detail's
+        wiggles use up arc length, so the elaboration comes out smaller than the sketch (by about
+        ``model.extent_ratio``) and drifts with the accumulated conditioning error.
     coarse : {"state", "sketch"}
         The coarse direction of each output sample: the instantiated state's (``"state"``, the paper: the
         state's finest angle as it is) or the sketch's (``"sketch"``, our option: the sketch's angle plus the
@@ -205,11 +209,13 @@ def elaborate(
         raise ValueError("no training state lies in the search window: widen window")
     angles = _instantiated_angles(model, states, phi, coarse)
     segments = np.diff(np.vstack([resampled, resampled[:1]]) if closed else resampled, axis=0)
-    step = float(np.hypot(*segments.T).mean()) * (model.extent_ratio if match_extent else 1.0)
+    step = float(np.hypot(*segments.T).mean())
     path = integrate_angles(angles, step, start=resampled[0])
     gap = float(np.hypot(*(path[-1] - path[0])) / (step * angles.size)) if closed else 0.0
     if closed:
         path = close_curve(path) if closure == "distribute" else path[:-1]
+    if match_extent:
+        path = match_size(path, resampled)
     return Elaboration(points=path, angles=angles, sketch=resampled, steering=phi, states=states,
                        closed=closed, closing_gap=gap, restarts=int(restarts))
 
@@ -217,29 +223,43 @@ def elaborate(
 def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: bool | None = None) -> np.ndarray:
     """The curve at the model's steering scale: the sketch a user would draw of it (eq. 1-2, phi = psi(theta)).
 
-    The curve is resampled (at ``n_samples`` points, default ``model.samples_per_curve``), its angles are
-    filtered ``steering_scale`` times with the model's filter and integrated back from its first point; a
-    closed curve is closed by distributing its end gap (:func:`.curves.close_curve`).
+    The curve is resampled as training resamples its curves (:func:`.curves.resample_simple`, at ``n_samples``
+    points, default ``model.samples_per_curve``), its angles are filtered ``steering_scale`` times with the
+    model's filter and integrated back; a closed curve is closed by distributing its end gap
+    (:func:`.curves.close_curve`). The smooth curve is then brought to the detailed curve's size and place
+    (:func:`.curves.match_size`): with the same arc length it would span about ``model.extent_ratio`` times
+    more, which no user drawing the curve would do.
     """
     closed = model.closed if closed is None else bool(closed)
     curve = check_curve(curve, closed=closed, name="curve")
     n_samples = model.samples_per_curve if n_samples is None else n_samples
-    points = resample_curve(curve, n_samples, closed=closed)
+    points = resample_simple(curve, n_samples, closed=closed)   # as training reads its curves
     theta = tangent_angles(points, closed=closed)
     coarse = multiscale_angles(theta, model.steering_scale + 1, model.filter, closed=closed)[-1]
     lengths = np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T)
     path = integrate_angles(coarse, float(lengths.mean()), start=points[0])
-    return close_curve(path) if closed else path
+    return match_size(close_curve(path) if closed else path, points)
 
 
-def copied_runs(model: SketchModel, states) -> np.ndarray:
+def copied_runs(model: SketchModel, states, *, slack: int = 0) -> np.ndarray:
     """Lengths (in samples) of the runs an elaboration copies from one training curve.
 
-    A run continues while each instantiated state is the training successor of the previous one, so a run
-    of length ``L`` reproduces ``L`` consecutive training samples. The longest run measures novelty.
+    A run continues while each instantiated state is the training successor of the previous one (``slack=0``),
+    so a run of length ``L`` reproduces ``L`` consecutive training samples. The longest run measures novelty.
+    Neighbouring samples of a curve are each other's most similar states, so the chain also moves along a
+    training curve by repeating a sample or skipping one; ``slack=1`` counts those moves (an advance of 0, 1
+    or 2 samples on the same curve) as copying too, a stricter test of novelty.
     """
     states = np.asarray(states)
-    follows = model.successor[states[:-1]] == states[1:]
+    slack = integer_at_least(slack, "slack", 0)
+    if slack == 0:
+        follows = model.successor[states[:-1]] == states[1:]
+    else:
+        n = model.samples_per_curve
+        advance = model.sample[states[1:]] - model.sample[states[:-1]]
+        if model.closed:
+            advance %= n
+        follows = (model.curve[states[1:]] == model.curve[states[:-1]]) & (np.abs(advance - 1) <= slack)
     boundaries = np.flatnonzero(np.concatenate([[True], ~follows, [True]]))
     return np.diff(boundaries)
 

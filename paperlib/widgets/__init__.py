@@ -10,6 +10,9 @@
 - :func:`strokepattern_explorer`: Barla 2006 (:mod:`paperlib.strokepattern`): the clustering live
   under an epsilon slider, rings, variation, a target path or region picked or drawn with the
   mouse (ipycanvas), synthesize.
+- :func:`sketch_explorer`: Simhon 2001 (:mod:`paperlib.sketch`): draw a closed curve with the mouse
+  (ipycanvas) or pick a preset sketch, pick the class (coastlines, leaves) and the parameters (order,
+  scales, variance, threshold, instantiation, window, closure), see the elaboration update.
 
 Each explorer keeps its update logic in plain methods, so tests and notebooks drive it without a
 browser, and renders its figure to PNG (works headless, with the Agg backend and in papermill).
@@ -25,11 +28,12 @@ from .arrangement import (
     scaled_window,
 )
 from .mlts import MLTSExplorer, mlts_explorer
+from .sketch import SketchExplorer, sketch_explorer
 from .stipple import StippleExplorer, stipple_explorer
 from .strokepattern import StrokePatternExplorer, strokepattern_explorer
 
 __all__ = [
     "DENSITY_KINDS", "EXEMPLARS", "ArrangementExplorer", "Drawing", "arrangement_explorer", "density_image",
     "scaled_window", "MLTSExplorer", "mlts_explorer", "StippleExplorer", "stipple_explorer",
-    "StrokePatternExplorer", "strokepattern_explorer",
+    "StrokePatternExplorer", "strokepattern_explorer", "SketchExplorer", "sketch_explorer",
 ]

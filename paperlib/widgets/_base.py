@@ -51,3 +51,41 @@ class ExplorerBase:
             colour = "#b00020" if self.error is not None else "#a15c00"
             text += f"<br><span style='color:{colour}'>{html.escape(self.message).replace(chr(10), '<br>')}</span>"
         self.status.value = f"<div style='font-family:monospace;font-size:12px'>{text}</div>"
+
+
+class CanvasDrawing:
+    """Drawing with the mouse on an ipycanvas ``Canvas``: press, drag, release (or leave the canvas).
+
+    A subclass sets ``canvas``, ``drawn_points = []`` and ``_stroke_active = False``, connects the canvas's
+    mouse events to the four handlers below, and implements ``_redraw_canvas()`` and ``_drawing_finished()``
+    (what the released drawing does: become the target, be elaborated, ...).
+    """
+
+    def _on_mouse_down(self, x, y) -> None:
+        """Start a new drawing (the previous one is forgotten)."""
+        self.drawn_points, self._stroke_active = [(float(x), float(y))], True
+        self._redraw_canvas()
+
+    def _on_mouse_move(self, x, y) -> None:
+        """Extend the drawing while the button is down (the new segment is drawn at once)."""
+        if not self._stroke_active:
+            return
+        point = (float(x), float(y))
+        if point == self.drawn_points[-1]:
+            return
+        previous = self.drawn_points[-1]
+        self.drawn_points.append(point)
+        self.canvas.stroke_style, self.canvas.line_width = "#1f77b4", 2
+        self.canvas.stroke_line(*previous, *point)
+
+    def _on_mouse_up(self, x, y) -> None:
+        """End the drawing and hand it to :meth:`_drawing_finished`."""
+        if not self._stroke_active:
+            return
+        self._on_mouse_move(x, y)
+        self._stroke_active = False
+        self._drawing_finished()
+
+    def _on_mouse_out(self, x, y) -> None:
+        """Leaving the canvas ends the drawing, as a release would."""
+        self._on_mouse_up(x, y)

@@ -102,7 +102,7 @@ from paperlib.strokepattern import (
     synthesize,
     vary_positions,
 )
-from paperlib.widgets._base import ExplorerBase
+from paperlib.widgets._base import CanvasDrawing, ExplorerBase
 
 __all__ = ["ANALYSIS_CACHE", "EXEMPLARS", "PRESETS", "StrokePatternExplorer", "TARGET_FACTOR", "drawn_target",
            "preset_target", "stroke_hash", "strokepattern_explorer"]
@@ -293,7 +293,7 @@ def _outline_parts(region) -> list:
 # ---------------------------------------------------------------------------- the explorer
 
 
-class StrokePatternExplorer(ExplorerBase):
+class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
     """Widgets and state of the Barla 2006 explorer (built by :func:`strokepattern_explorer`).
 
     Attributes
@@ -615,36 +615,11 @@ class StrokePatternExplorer(ExplorerBase):
         pixels = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         return np.column_stack([pixels[:, 0], self.canvas.height - pixels[:, 1]]) * self.canvas_scale
 
-    def _on_mouse_down(self, x, y) -> None:
-        """Start a new drawing (the previous one is forgotten)."""
-        self.drawn_points, self._stroke_active = [(float(x), float(y))], True
-        self._redraw_canvas()
-
-    def _on_mouse_move(self, x, y) -> None:
-        """Extend the drawing while the button is down (the new segment is drawn at once)."""
-        if not self._stroke_active:
-            return
-        point = (float(x), float(y))
-        if point == self.drawn_points[-1]:
-            return
-        (x0, y0) = self.drawn_points[-1]
-        self.drawn_points.append(point)
-        self.canvas.stroke_style, self.canvas.line_width = "#1f77b4", 2
-        self.canvas.stroke_line(x0, y0, *point)
-
-    def _on_mouse_up(self, x, y) -> None:
-        """End the drawing: the target becomes the drawing, and the pattern is synthesized along / inside it."""
-        if not self._stroke_active:
-            return
-        self._on_mouse_move(x, y)
-        self._stroke_active = False
+    def _drawing_finished(self) -> None:
+        """A released drawing becomes the target, and the pattern is synthesized along / inside it."""
         with self._quiet():
             self.target_mode.value = "draw"
         self.synthesize()
-
-    def _on_mouse_out(self, x, y) -> None:
-        """Leaving the canvas ends the drawing, as a release would."""
-        self._on_mouse_up(x, y)
 
     def _redraw_canvas(self) -> None:
         """Background, the reference's size for scale, a hint, and the drawing (closed in 2D)."""

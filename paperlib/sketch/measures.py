@@ -1,0 +1,106 @@
+"""How an elaboration compares with its sketch and its training class (the statistics of Figs. 3-6).
+
+Simhon 2001 claims (section 3.1) that the synthesized curves *"maintain the statistical properties of the
+training set and the overall shape of the hand-drawn curve"* and that *"most of the curves generated are
+novel ones, never seen in the training set"*. These measures make the claims checkable:
+
+- :func:`curve_hausdorff`: how far the elaboration strays from the sketch (the overall shape);
+- :func:`turning_per_sample` and :func:`turning_ks`: the distribution of the turning between successive
+  samples, the finest-scale statistic the chain learns, compared by the two-sample Kolmogorov-Smirnov
+  distance;
+- :func:`box_counting_dimension`: the roughness across scales, a coastline's classic statistic;
+- :func:`.steering.copied_runs`: novelty, the runs copied from one training curve.
+
+Curves are compared as polylines at equal arc-length samples; the turning statistics assume both curves
+have the same number of samples per unit of detail (an elaboration and the training curves do: one sample
+of the sketch takes one training sample's detail).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.stats import ks_2samp
+
+from ..geometry import as_points, hausdorff
+from .curves import tangent_angles, total_turning
+
+__all__ = ["box_counting_dimension", "curve_hausdorff", "densify", "turning_ks", "turning_per_sample"]
+
+# Box sizes as fractions of the curve's larger side: coarse enough to see several boxes, fine enough to stay
+# above the sample spacing of a 256-sample coastline (about 1/40 of its side).
+BOX_FRACTIONS = (1 / 4, 1 / 8, 1 / 16, 1 / 32)
+
+
+def _polyline(points, closed: bool, name: str) -> np.ndarray:
+    points = as_points(points, name=name)
+    if len(points) < 2:
+        raise ValueError(f"{name} needs at least 2 points, got {len(points)}")
+    return np.vstack([points, points[:1]]) if closed else points
+
+
+def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
+    """The polyline's vertices plus points every ``spacing`` (at most) along each of its segments."""
+    if not spacing > 0:
+        raise ValueError(f"spacing must be positive, got {spacing}")
+    polyline = _polyline(points, closed, "points")
+    starts, moves = polyline[:-1], np.diff(polyline, axis=0)
+    pieces = np.maximum(np.ceil(np.hypot(*moves.T) / spacing).astype(np.int64), 1)
+    segment = np.repeat(np.arange(len(starts)), pieces)
+    fraction = (np.arange(pieces.sum()) - np.repeat(np.cumsum(pieces) - pieces, pieces)) / np.repeat(pieces, pieces)
+    dense = starts[segment] + fraction[:, None] * moves[segment]
+    return dense if closed else np.vstack([dense, polyline[-1:]])
+
+
+def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None) -> float:
+    """Hausdorff distance between two curves (not only their vertices).
+
+    Both polylines are densified to ``resolution`` (default: a hundredth of the smaller of their two mean
+    segment lengths), so the result is the distance between the curves within ``resolution``.
+    """
+    a, b = _polyline(a, closed, "a"), _polyline(b, closed, "b")
+    if resolution is None:
+        resolution = 0.01 * min(np.hypot(*np.diff(c, axis=0).T).mean() for c in (a, b))
+    kept = slice(None, -1) if closed else slice(None)
+    return hausdorff(densify(a[kept], closed=closed, spacing=resolution),
+                     densify(b[kept], closed=closed, spacing=resolution))
+
+
+def turning_per_sample(points, *, closed: bool) -> np.ndarray:
+    """The signed turning (radians) at every sample: differences of successive tangent angles.
+
+    A closed curve of ``n`` samples has ``n`` turnings, the closing turn included (they sum to its total
+    turning); an open one ``n - 2``.
+    """
+    theta = tangent_angles(as_points(points, name="points"), closed=closed)
+    if closed:
+        return np.diff(theta, append=theta[0] + total_turning(theta))
+    return np.diff(theta)
+
+
+def turning_ks(a, b) -> float:
+    """Two-sample Kolmogorov-Smirnov distance between two sets of turnings (0: same distribution, 1: disjoint)."""
+    a, b = (np.asarray(x, dtype=np.float64).ravel() for x in (a, b))
+    if a.size == 0 or b.size == 0 or not (np.isfinite(a).all() and np.isfinite(b).all()):
+        raise ValueError("turning_ks needs two non-empty sets of finite turnings")
+    return float(ks_2samp(a, b).statistic)
+
+
+def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS) -> float:
+    """Box-counting dimension of a curve: the slope of log N(eps) against log(1 / eps).
+
+    ``N(eps)`` counts the grid cells of side ``eps`` the curve passes through, ``eps`` running over
+    ``fractions`` of the curve's larger side; the curve is densified to an eighth of the smallest box so
+    that every cell a segment crosses is counted. 1 for a smooth curve, towards 2 for a space-filling one;
+    the answer depends on the box sizes, so compare curves at the same sizes and the same sampling.
+    """
+    fractions = np.asarray(fractions, dtype=np.float64)
+    if fractions.ndim != 1 or fractions.size < 2 or np.any(fractions <= 0) or np.any(fractions >= 1):
+        raise ValueError("fractions must hold at least two box sizes in (0, 1)")
+    polyline = _polyline(points, closed, "points")
+    side = float(np.ptp(polyline, axis=0).max())
+    if side == 0:
+        raise ValueError("the curve is a single point")
+    dense = densify(polyline[:-1] if closed else polyline, closed=closed, spacing=fractions.min() * side / 8)
+    origin = dense.min(axis=0)
+    counts = [len(np.unique(np.floor((dense - origin) / (f * side)).astype(np.int64), axis=0)) for f in fractions]
+    return float(np.polyfit(np.log(1 / fractions), np.log(counts), 1)[0])
