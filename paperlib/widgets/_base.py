@@ -89,3 +89,25 @@ class CanvasDrawing:
     def _on_mouse_out(self, x, y) -> None:
         """Leaving the canvas ends the drawing, as a release would."""
         self._on_mouse_up(x, y)
+
+    def _pixels_to_units(self, points):
+        """Canvas pixels (x right, y down) to the explorer's units (x right, y up) at ``self.canvas_scale``."""
+        import numpy as np
+
+        pixels = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        return np.column_stack([pixels[:, 0], self.canvas.height - pixels[:, 1]]) * self.canvas_scale
+
+    def _paint_drawing(self, canvas, *, close: bool) -> None:
+        """The drawn polyline in blue; closed and lightly filled when ``close`` (a released outline)."""
+        if len(self.drawn_points) < 2:
+            return
+        canvas.stroke_style, canvas.line_width = "#1f77b4", 2
+        canvas.begin_path()
+        canvas.move_to(*self.drawn_points[0])
+        for point in self.drawn_points[1:]:
+            canvas.line_to(*point)
+        if close:
+            canvas.close_path()
+            canvas.fill_style = "rgba(31, 119, 180, 0.12)"
+            canvas.fill()
+        canvas.stroke()

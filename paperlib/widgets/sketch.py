@@ -481,8 +481,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
 
     def canvas_to_sketch(self, points) -> np.ndarray:
         """Canvas pixels (x right, y down) to sketch units (x right, y up), ``(m, 2)``."""
-        pixels = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        return np.column_stack([pixels[:, 0], self.canvas.height - pixels[:, 1]]) * self.canvas_scale
+        return self._pixels_to_units(points)
 
     def _drawing_finished(self) -> None:
         """A released drawing becomes the sketch, and it is elaborated."""
@@ -506,17 +505,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
                              canvas.height - 8)
             unit = CLASSES[self.training.value][1]
             canvas.fill_text(f"canvas height: {_class_curves(self.training.value)[2]:.3g} {unit}", 6, 14)
-            if len(self.drawn_points) >= 2:
-                canvas.stroke_style, canvas.line_width = "#1f77b4", 2
-                canvas.begin_path()
-                canvas.move_to(*self.drawn_points[0])
-                for point in self.drawn_points[1:]:
-                    canvas.line_to(*point)
-                if not self._stroke_active:
-                    canvas.close_path()
-                    canvas.fill_style = "rgba(31, 119, 180, 0.12)"
-                    canvas.fill()
-                canvas.stroke()
+            self._paint_drawing(canvas, close=not self._stroke_active)
 
     # ------------------------------------------------------------------ results
 

@@ -612,8 +612,7 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
 
     def canvas_to_pattern(self, points) -> np.ndarray:
         """Canvas pixels (x right, y down) to pattern units (x right, y up), ``(m, 2)``."""
-        pixels = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-        return np.column_stack([pixels[:, 0], self.canvas.height - pixels[:, 1]]) * self.canvas_scale
+        return self._pixels_to_units(points)
 
     def _drawing_finished(self) -> None:
         """A released drawing becomes the target, and the pattern is synthesized along / inside it."""
@@ -637,18 +636,7 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
             canvas.font = "11px sans-serif"
             kind = "a path" if self.pattern.dimension == 1 else "the outline of a region"
             canvas.fill_text(f"press, drag and release to draw {kind}", 6, canvas.height - 8)
-            if len(self.drawn_points) >= 2:
-                points = np.asarray(self.drawn_points)
-                canvas.stroke_style, canvas.line_width = "#1f77b4", 2
-                canvas.begin_path()
-                canvas.move_to(*points[0])
-                for point in points[1:]:
-                    canvas.line_to(*point)
-                if self.pattern.dimension == 2 and not self._stroke_active:
-                    canvas.close_path()
-                    canvas.fill_style = "rgba(31, 119, 180, 0.15)"
-                    canvas.fill()
-                canvas.stroke()
+            self._paint_drawing(canvas, close=self.pattern.dimension == 2 and not self._stroke_active)
 
     def _draw_reference_size(self, canvas) -> None:
         """A grey box, top left, as large as the reference pattern at the canvas's scale."""
