@@ -1,4 +1,9 @@
-"""Command line: ``python -m paperlib reproduce [--quality ci|paper] [--only PATTERN] [--jobs N]``."""
+"""Command line.
+
+``python -m paperlib reproduce [--quality ci|paper] [--only PATTERN] [--jobs N]`` runs notebooks
+and checks their statistics; ``python -m paperlib seed-study --only PATTERN --seeds 0-9`` prints
+each statistic's spread over seeds (how a ``seed-study`` bound is measured).
+"""
 
 from __future__ import annotations
 
@@ -26,14 +31,52 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--seed", type=int, help="override every notebook's default seed")
     run.add_argument("--timeout", type=float, help="per-cell time limit in seconds")
     run.add_argument("--root", type=Path, default=Path("."), help="project root (default: current folder)")
+    run.add_argument("--figures-dir", type=Path, help="write figures and INDEX.md here instead of ROOT/figures")
+    study = commands.add_parser("seed-study", help="run notebooks over seeds and print each statistic's range")
+    study.add_argument("--only", metavar="PATTERN", required=True, help="glob or substring of the notebook names")
+    study.add_argument("--seeds", type=_seed_range, default=list(range(5)), metavar="A-B",
+                       help="seeds to run, as A-B or a comma list (default: 0-4)")
+    study.add_argument("--quality", choices=["ci", "paper"], default="ci", help="settings (default: ci)")
+    study.add_argument("--jobs", type=_positive_int, default=1, metavar="N", help="runs in parallel")
+    study.add_argument("--timeout", type=float, help="per-cell time limit in seconds")
+    study.add_argument("--root", type=Path, default=Path("."), help="project root (default: current folder)")
     return parser
+
+
+def _seed_range(text: str) -> list[int]:
+    """``"0-9"`` or ``"0,3,7"`` as a list of seeds."""
+    try:
+        if "-" in text:
+            first, last = (int(part) for part in text.split("-", 1))
+            return list(range(first, last + 1))
+        return [int(part) for part in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"seeds must be A-B or a comma list of integers, got {text!r}") from None
+
+
+def _seed_study(args) -> int:
+    import pandas as pd
+
+    try:
+        table = reproduce_module.seed_study(
+            args.root, only=args.only, seeds=args.seeds, quality=args.quality, jobs=args.jobs, timeout=args.timeout
+        )
+    except (ValueError, RuntimeError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    with pd.option_context("display.max_rows", None, "display.width", 250, "display.max_colwidth", 120):
+        print(table.to_string(index=False))
+    return 0
 
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
+    if args.command == "seed-study":
+        return _seed_study(args)
     try:
         runs, table = reproduce_module.reproduce(
-            args.root, quality=args.quality, only=args.only, jobs=args.jobs, seed=args.seed, timeout=args.timeout
+            args.root, quality=args.quality, only=args.only, jobs=args.jobs, seed=args.seed, timeout=args.timeout,
+            figures_dir=args.figures_dir,
         )
     except ValueError as exc:
         print(f"error: {exc}", file=sys.stderr)

@@ -4,23 +4,37 @@ A notebook calls :func:`start` once with its papermill parameters, then
 :func:`record` for every quantitative claim and :func:`save_figure` for every figure.
 Everything lands in ``out_dir`` (by convention ``figures/<notebook-stem>/``):
 ``stats.json`` holds the run's seed, quality and statistics. :func:`check_stats`
-compares those files with ``tests/expected_stats.toml``.
+compares those files with the expected statistics in ``tests/expected/``.
 
-The expected file has one table per notebook and statistic::
+``tests/expected/<notebook>.toml`` has one table per statistic::
 
-    [datasets_overview.n_coastlines]
+    [n_coastlines]
+    kind = "truth"
     value = 40
     source = "ground truth: the loader is asked for 40 curves"
 
-    [hurtut2009_fig06_synthesis.ks_distance]
-    max = 0.1
-    source = "paper, section 4: ..."
-    paper = { max = 0.05 }       # override for quality = "paper" runs
+    [glcm_pearson]
+    kind = "paper"
+    min = 0.99
+    source = "paper, section 3.3 and Fig. 8: coefficients 'greater than 0.99'"
+    xfail = "measured 0.93-0.95 (seeds 0-4); cause: ..."   # a paper claim we miss
 
-A spec holds ``source`` (required: where the number comes from) and either ``value``
-(with optional ``rtol``/``atol``; exact when both are absent) or ``min``/``max``.
-Statistics whose names start with ``time_`` are wall times: machine-dependent, so they
-are checked against an upper bound (``max``) only and ignored when two runs are compared.
+    [tone_error]
+    kind = "seed-study"
+    max = 0.05
+    source = "seeds 0-9: 0.007-0.034"
+    paper = { max = 0.04 }       # override for quality = "paper" runs
+
+A spec holds ``kind``, ``source`` and either ``value`` (with optional ``rtol``/``atol``;
+exact when both are absent) or ``min``/``max``. ``kind`` says where the bound comes
+from (:data:`KINDS`) and the ``source`` must support it (a paper statistic cites where
+the paper says so, an oracle names the independent implementation, a seed study its
+seeds). A seed study bounds a float by its spread over seeds, never by one seed's value:
+chaotic computations diverge on another processor. ``xfail`` marks a paper claim we
+miss, with the measured value and the cause; the run passes while the miss persists and
+fails once it is gone. Statistics whose names start with ``time_`` are wall times: they
+are shown and never asserted (speed is asserted in ``benchmarks/`` as ratios), and they
+are ignored when two runs are compared.
 
 This module knows no method: it only moves numbers and files.
 """
@@ -58,11 +72,43 @@ __all__ = [
 QUALITIES = ("ci", "paper")
 STATS_FILE = "stats.json"
 TIME_PREFIX = "time_"
-CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "source", "ok", "reason"]
+CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "kind", "source", "status", "ok", "reason"]
+#: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time.
+OK_STATUSES = ("pass", "xfail", "shown")
+EXPECTED_DIR = "tests/expected/"
 
 _NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_.\-]*$")
 _MAX_ITEMS = 10_000  # a statistic is a number or a small table, never raw data
-_SPEC_KEYS = {"value", "rtol", "atol", "min", "max", "source"}
+_BOUND_KEYS = {"value", "rtol", "atol", "min", "max", "xfail"}
+_SPEC_KEYS = _BOUND_KEYS | {"source", "kind"}
+
+#: Where an expected number comes from (DESIGN.md, "Validation: what a statistic must prove").
+KINDS = ("paper", "oracle", "truth", "seed-study", "budget")
+#: What a ``source`` must mention to support its ``kind``, and how to say so in an error.
+_KIND_EVIDENCE = {
+    "paper": (
+        re.compile(r"\bpaper\b.*?\b(section|sec\.|fig\.|figs\.|figure|table|eq\.|eqs\.|equation|abstract|caption)",
+                   re.IGNORECASE | re.DOTALL),
+        "the paper and where it says so (section, figure, table, equation, abstract or caption)",
+    ),
+    "oracle": (
+        re.compile(r"spatstat|rrcov|scikit-image|skimage|shapely|scipy|\bR\b", re.IGNORECASE),
+        "the independent implementation it is checked against (spatstat, rrcov, scikit-image, shapely, SciPy, R)",
+    ),
+    "truth": (
+        re.compile(r"ground truth|closed form|analytic|by construction|by definition|exact|identity|theorem",
+                   re.IGNORECASE),
+        "the known answer: 'ground truth', 'closed form', 'analytic', 'by construction', 'by definition', 'exact'",
+    ),
+    "seed-study": (
+        re.compile(r"seeds?\s*\d", re.IGNORECASE),
+        "the seeds the range was measured over (e.g. 'seeds 0-9: 0.12-0.31')",
+    ),
+    "budget": (
+        re.compile(r"budget|design limit|\bcap\b|\blimit\b", re.IGNORECASE),
+        "the budget, cap or design limit it enforces",
+    ),
+}
 
 
 @dataclass(frozen=True)
@@ -231,25 +277,49 @@ def statistics_without_times(data: dict) -> dict:
 
 
 def load_expected(path) -> dict:
-    """Read and validate ``expected_stats.toml``: ``{notebook: {statistic: spec}}``."""
+    """Read and validate the expected statistics: ``{notebook: {statistic: spec}}``.
+
+    Parameters
+    ----------
+    path : str or Path
+        A folder of ``<notebook>.toml`` files (the project's ``tests/expected/``), or
+        one such file; each file's tables are its notebook's statistics.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and entry, when a file is missing or malformed, or an entry has
+        no ``kind``, a kind its ``source`` does not support, a bound on a wall time, or
+        an ``xfail`` that is not a missed paper claim with its measured value.
+    """
     path = Path(path)
+    files = sorted(path.glob("*.toml")) if path.is_dir() else [path]
+    if not files:
+        raise ValueError(f"expected statistics folder {path} holds no .toml file")
+    expected = {file.stem: _read_toml(file) for file in files}
+    for file, (notebook, statistics) in zip(files, expected.items()):
+        for statistic, spec in statistics.items():
+            _validate_spec(spec, f"{file}: [{statistic}]", statistic)
+    return expected
+
+
+def _read_toml(path: Path) -> dict:
     try:
-        expected = tomllib.loads(path.read_text())
+        return tomllib.loads(path.read_text())
     except FileNotFoundError:
         raise ValueError(f"expected statistics file not found: {path}") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: invalid TOML ({exc})") from None
-    for notebook, statistics in expected.items():
-        if not isinstance(statistics, dict):
-            raise ValueError(f"{path}: [{notebook}] must be a table of statistics")
-        for statistic, spec in statistics.items():
-            _validate_spec(spec, f"{path}: [{notebook}.{statistic}]", statistic)
-    return expected
 
 
 def _validate_spec(spec, where: str, statistic: str) -> None:
     if not isinstance(spec, dict):
-        raise ValueError(f"{where} must be a table with 'source' and 'value' or 'min'/'max'")
+        raise ValueError(f"{where} must be a table with 'kind', 'source' and 'value' or 'min'/'max'")
+    if statistic.startswith(TIME_PREFIX):
+        raise ValueError(
+            f"{where}: wall times ({TIME_PREFIX}*) are recorded and shown, never asserted; "
+            "assert speed in benchmarks/ as a ratio against a baseline"
+        )
     unknown = set(spec) - _SPEC_KEYS - set(QUALITIES)
     if unknown:
         raise ValueError(f"{where}: unknown keys {sorted(unknown)}; allowed: {sorted(_SPEC_KEYS | set(QUALITIES))}")
@@ -258,21 +328,44 @@ def _validate_spec(spec, where: str, statistic: str) -> None:
     for quality in QUALITIES:
         if quality in spec:
             override = spec[quality]
-            if not isinstance(override, dict) or not set(override) <= _SPEC_KEYS - {"source"}:
-                raise ValueError(f"{where}.{quality}: an override may set only value, rtol, atol, min, max")
-            _validate_bounds({**spec, **override}, f"{where} ({quality})", statistic)
-    _validate_bounds(spec, where, statistic)
+            if not isinstance(override, dict) or not set(override) <= _BOUND_KEYS:
+                raise ValueError(f"{where}.{quality}: an override may set only {sorted(_BOUND_KEYS)}")
+            resolved = _resolve_spec(spec, quality)
+            _validate_kind(resolved, f"{where} ({quality})")
+            _validate_bounds(resolved, f"{where} ({quality})")
+    _validate_kind(spec, where)
+    _validate_bounds(spec, where)
 
 
-def _validate_bounds(spec: dict, where: str, statistic: str) -> None:
-    if statistic.startswith(TIME_PREFIX):
-        if "max" not in spec or {"value", "min"} & set(spec):
-            raise ValueError(f"{where}: wall times ({TIME_PREFIX}*) are checked against 'max' only")
-    elif "value" not in spec and "min" not in spec and "max" not in spec:
+def _validate_kind(spec: dict, where: str) -> None:
+    """The entry's ``kind`` is known, its ``source`` supports it, and ``xfail`` is a paper miss."""
+    kind = spec.get("kind")
+    if kind not in KINDS:
+        raise ValueError(f"{where}: 'kind' must be one of {KINDS}, got {kind!r}")
+    evidence, wanted = _KIND_EVIDENCE[kind]
+    if not evidence.search(spec["source"]):
+        raise ValueError(f"{where}: a {kind!r} statistic's source must name {wanted}; got {spec['source']!r}")
+    if "xfail" in spec:
+        if kind != "paper":
+            raise ValueError(
+                f"{where}: only a paper's claim may be an expected failure (xfail); a {kind!r} bound that fails "
+                "is a regression to fix"
+            )
+        if not isinstance(spec["xfail"], str) or not re.search(r"\d", spec["xfail"]) or len(spec["xfail"]) < 20:
+            raise ValueError(f"{where}: 'xfail' must give the measured value and the cause of the miss")
+
+
+def _validate_bounds(spec: dict, where: str) -> None:
+    if "value" not in spec and "min" not in spec and "max" not in spec:
         raise ValueError(f"{where}: give 'value' (with rtol/atol) or 'min'/'max'")
     for key in ("rtol", "atol"):
         if key in spec and (not _is_number(spec[key]) or spec[key] < 0):
             raise ValueError(f"{where}: {key} must be a non-negative number")
+    if spec.get("kind") == "seed-study" and isinstance(spec.get("value"), float) and ("rtol" in spec or "atol" in spec):
+        raise ValueError(
+            f"{where}: a seed study bounds a float by its spread over seeds (min/max), not by one seed's value "
+            "and a tolerance (another processor diverges)"
+        )
 
 
 def _is_number(value) -> bool:
@@ -342,7 +435,7 @@ def _first_reason(items) -> str:
     return ""
 
 
-def check_stats(figures_dir="figures", expected="tests/expected_stats.toml", notebooks=None) -> pd.DataFrame:
+def check_stats(figures_dir="figures", expected=EXPECTED_DIR, notebooks=None) -> pd.DataFrame:
     """Compare recorded statistics with the expected file.
 
     Parameters
@@ -350,16 +443,19 @@ def check_stats(figures_dir="figures", expected="tests/expected_stats.toml", not
     figures_dir : str or Path
         Folder holding ``<notebook>/stats.json``.
     expected : str, Path or dict
-        Path of ``expected_stats.toml`` or its already-loaded content.
+        The expected statistics (see :func:`load_expected`) or their loaded content.
     notebooks : iterable of str, optional
-        Notebook stems to check; by default every notebook in the expected file.
+        Notebook stems to check; by default every notebook with expected statistics.
 
     Returns
     -------
     pandas.DataFrame
-        One row per statistic with columns notebook, statistic, value, expected,
-        tolerance, source, ok, reason. A statistic recorded but not expected, or
-        expected but not recorded, is a failing row; so is a missing ``stats.json``.
+        One row per statistic with the columns of ``CHECK_COLUMNS``. ``status`` is
+        ``pass``; ``FAIL``; ``xfail`` for a paper claim we miss as recorded in its
+        ``xfail``; ``XPASS`` (failing) when such a miss is gone; ``shown`` for a wall
+        time, which is never asserted. ``ok`` is true for pass, xfail and shown. A
+        statistic recorded but not expected, or expected but not recorded, fails; so
+        does a missing ``stats.json``.
     """
     expected = expected if isinstance(expected, dict) else load_expected(expected)
     notebooks = sorted(expected) if notebooks is None else list(notebooks)
@@ -369,39 +465,54 @@ def check_stats(figures_dir="figures", expected="tests/expected_stats.toml", not
     return pd.DataFrame(rows, columns=CHECK_COLUMNS)
 
 
-def _row(notebook, statistic, value=None, expected="", tolerance="", source="", reason=""):
+def _row(notebook, statistic, value=None, expected="", tolerance="", kind="", source="", reason="", status=None):
+    status = status or ("FAIL" if reason else "pass")
     return dict(
         notebook=notebook,
         statistic=statistic,
         value=value,
         expected=expected,
         tolerance=tolerance,
+        kind=kind,
         source=source,
-        ok=not reason,
+        status=status,
+        ok=status in OK_STATUSES,
         reason=reason,
     )
 
 
 def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dict]:
     if specs is None:
-        return [_row(notebook, "", reason="notebook has no entry in expected_stats.toml")]
+        return [_row(notebook, "", reason=f"notebook has no entry in {EXPECTED_DIR}")]
     try:
         data = load_stats(folder / STATS_FILE)
     except ValueError as exc:
         return [_row(notebook, "", reason=str(exc))]
     recorded = data["statistics"]
-    rows = []
-    for statistic, spec in specs.items():
-        resolved = _resolve_spec(spec, data.get("quality"))
-        expected_text, tolerance = _describe(resolved)
-        source = spec["source"]
-        if statistic not in recorded:
-            rows.append(_row(notebook, statistic, None, expected_text, tolerance, source, "expected but not recorded"))
-            continue
-        reason = _compare(recorded[statistic], resolved)
-        rows.append(_row(notebook, statistic, recorded[statistic], expected_text, tolerance, source, reason))
+    rows = [_check_statistic(notebook, statistic, spec, recorded, data.get("quality"))
+            for statistic, spec in specs.items()]
     for statistic in recorded.keys() - specs.keys():
-        rows.append(
-            _row(notebook, statistic, recorded[statistic], reason="recorded but not in expected_stats.toml")
-        )
+        if statistic.startswith(TIME_PREFIX):
+            rows.append(_row(notebook, statistic, recorded[statistic], "shown, not asserted", "", "time",
+                             "wall time of this run on this machine", status="shown"))
+        else:
+            rows.append(_row(notebook, statistic, recorded[statistic], reason=f"recorded but not in {EXPECTED_DIR}"))
     return rows
+
+
+def _check_statistic(notebook: str, statistic: str, spec: dict, recorded: dict, quality: str | None) -> dict:
+    """One row: pass, FAIL, xfail (a paper claim we miss, as expected) or XPASS (the miss is gone)."""
+    resolved = _resolve_spec(spec, quality)
+    expected_text, tolerance = _describe(resolved)
+    row = dict(notebook=notebook, statistic=statistic, expected=expected_text, tolerance=tolerance,
+               kind=spec["kind"], source=spec["source"])
+    if statistic not in recorded:
+        return _row(**row, reason="expected but not recorded")
+    value = recorded[statistic]
+    reason = _compare(value, resolved)
+    if "xfail" not in resolved:
+        return _row(**row, value=value, reason=reason)
+    if reason:
+        return _row(**row, value=value, reason=f"expected failure: {resolved['xfail']}", status="xfail")
+    return _row(**row, value=value, status="XPASS",
+                reason="the paper's bound is now met: remove 'xfail' and update the claims ledger")

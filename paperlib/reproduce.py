@@ -10,7 +10,7 @@ This is what ``python -m paperlib reproduce`` and ``make reproduce`` do:
 3. each notebook writes into a staging folder ``build/staging/<stem>/`` that replaces
    ``figures/<stem>/`` only when the notebook finished, so ``figures/`` never holds a
    half-run notebook;
-4. check the recorded statistics against ``tests/expected_stats.toml`` and write
+4. check the recorded statistics against ``tests/expected/`` and write
    ``figures/INDEX.md``.
 
 Like :mod:`paperlib.repro`, this module knows no method.
@@ -32,7 +32,15 @@ import pandas as pd
 from . import repro
 from .parallel import run_many
 
-__all__ = ["NotebookRun", "find_notebooks", "paper_and_figure", "reproduce", "run_notebook", "write_index"]
+__all__ = [
+    "NotebookRun",
+    "find_notebooks",
+    "paper_and_figure",
+    "reproduce",
+    "run_notebook",
+    "seed_study",
+    "write_index",
+]
 
 PAPERS = {
     "hurtut2009": "Hurtut, Landes, Thollot, Gousseau, Drouilhet & Coeurjolly 2009, "
@@ -64,7 +72,7 @@ class Layout:
             notebooks=root / "notebooks",
             figures=Path(figures_dir).resolve() if figures_dir else root / "figures",
             build=Path(build_dir).resolve() if build_dir else root / "build",
-            expected=root / "tests" / "expected_stats.toml",
+            expected=root / "tests" / "expected",
         )
 
 
@@ -209,7 +217,7 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
     Parameters
     ----------
     root : str or Path
-        Project root (``notebooks/``, ``tests/expected_stats.toml``).
+        Project root (``notebooks/``, ``tests/expected/``).
     quality : {"ci", "paper"}
     only : str, optional
         Glob or substring selecting notebooks (see :func:`find_notebooks`).
@@ -241,6 +249,69 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
     all_stems = [path.stem for path in find_notebooks(layout.notebooks)]
     write_index(layout, all_stems, expected)
     return runs, table
+
+
+def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, build_dir=None) -> pd.DataFrame:
+    """Run notebooks over several seeds and tabulate each statistic's spread.
+
+    This is how a ``seed-study`` bound of ``tests/expected/`` is measured: the range a
+    statistic takes over seeds, on this library. Figures go under
+    ``build/seed-study/<quality>/seed-<seed>/``, never into ``figures/``.
+
+    Parameters
+    ----------
+    root : str or Path
+        Project root.
+    only : str
+        Glob or substring selecting notebooks (see :func:`find_notebooks`).
+    seeds : iterable of int
+        The seeds to run, at least two.
+    quality : {"ci", "paper"}
+    jobs : int
+        Notebooks run in parallel processes.
+    timeout : float, optional
+        Per-cell time limit in seconds.
+    build_dir : str or Path, optional
+        Instead of ``root/build``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per notebook and numeric statistic (wall times excluded): ``min``,
+        ``max``, ``n_seeds`` and ``values`` (the value at each seed, in seed order);
+        non-numeric statistics show ``n_distinct`` instead. Failed runs raise.
+    """
+    seeds = [int(seed) for seed in seeds]
+    if len(seeds) < 2 or len(set(seeds)) != len(seeds):
+        raise ValueError(f"seeds must be at least two distinct integers, got {seeds!r}")
+    layout = Layout.of(root, build_dir=build_dir)
+    notebooks = find_notebooks(layout.notebooks, only)
+    tasks = []
+    for seed in seeds:
+        folder = layout.build / "seed-study" / quality / f"seed-{seed}"
+        seeded_layout = Layout.of(root, figures_dir=folder / "figures", build_dir=folder / "build")
+        tasks += [(path, seeded_layout, quality, seed, timeout) for path in notebooks]
+    runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=False)
+    failed = [f"{run.notebook}: {run.error}" for run in runs if not run.ok]
+    if failed:
+        raise RuntimeError("seed study: notebooks failed: " + "; ".join(failed))
+    values: dict[tuple[str, str], list] = {}
+    for (path, seeded_layout, *_), run in zip(tasks, runs):
+        statistics = repro.load_stats(seeded_layout.figures / run.notebook / repro.STATS_FILE)
+        for name, value in repro.statistics_without_times(statistics).items():
+            values.setdefault((run.notebook, name), []).append(value)
+    return pd.DataFrame([_spread(notebook, name, items) for (notebook, name), items in values.items()])
+
+
+def _spread(notebook: str, statistic: str, items: list) -> dict:
+    numeric = all(isinstance(item, (int, float)) and not isinstance(item, bool) for item in items)
+    row = {"notebook": notebook, "statistic": statistic, "n_seeds": len(items)}
+    if numeric:
+        row.update(min=min(items), max=max(items), n_distinct=len(set(items)))
+    else:
+        row.update(min=None, max=None, n_distinct=len({json.dumps(item, sort_keys=True) for item in items}))
+    row["values"] = json.dumps(items)[:200]
+    return row
 
 
 def write_index(layout: Layout, stems, expected: dict) -> Path:
