@@ -276,7 +276,7 @@ def statistics_without_times(data: dict) -> dict:
     return {name: value for name, value in data["statistics"].items() if not name.startswith(TIME_PREFIX)}
 
 
-def load_expected(path) -> dict:
+def load_expected(path, notebooks=None) -> dict:
     """Read and validate the expected statistics: ``{notebook: {statistic: spec}}``.
 
     Parameters
@@ -284,6 +284,8 @@ def load_expected(path) -> dict:
     path : str or Path
         A folder of ``<notebook>.toml`` files (the project's ``tests/expected/``), or
         one such file; each file's tables are its notebook's statistics.
+    notebooks : iterable of str, optional
+        Read only these notebooks' files from the folder (each must exist).
 
     Raises
     ------
@@ -293,11 +295,14 @@ def load_expected(path) -> dict:
         an ``xfail`` that is not a missed paper claim with its measured value.
     """
     path = Path(path)
-    files = sorted(path.glob("*.toml")) if path.is_dir() else [path]
+    if notebooks is not None and path.is_dir():
+        files = [path / f"{notebook}.toml" for notebook in notebooks]
+    else:
+        files = sorted(path.glob("*.toml")) if path.is_dir() else [path]
     if not files:
         raise ValueError(f"expected statistics folder {path} holds no .toml file")
     expected = {file.stem: _read_toml(file) for file in files}
-    for file, (notebook, statistics) in zip(files, expected.items()):
+    for file, statistics in zip(files, expected.values()):
         for statistic, spec in statistics.items():
             _validate_spec(spec, f"{file}: [{statistic}]", statistic)
     return expected

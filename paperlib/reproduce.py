@@ -30,6 +30,7 @@ from pathlib import Path
 import pandas as pd
 
 from . import repro
+from .claims import VERDICTS, ledger_table, load_claims, write_ledger
 from .parallel import run_many
 
 __all__ = [
@@ -47,8 +48,9 @@ PAPERS = {
     "Appearance-guided synthesis of element arrangements by example",
     "barla2006": "Barla, Breslav, Thollot, Sillion & Markosian 2006, Stroke pattern analysis and synthesis",
     "kim2009": "Kim, Maciejewski, Isenberg, Andrews, Chen, Sousa & Ebert 2009, Stippling by example",
-    "alvarez2015": "Alvarez, Gomez & Cordero 2015, Abstract textures by a multi-layered texture sampler",
-    "simhon2001": "Simhon & Dudek 2001, Sketch interpretation and refinement using statistical models",
+    "alvarez2015": "Alvarez, Gousseau, Morel & Salgado 2015, "
+    "Exploring the space of abstract textures by principles and random sampling",
+    "simhon2001": "Simhon & Dudek 2001, On the elaboration of hand-drawn sketches",
 }
 KERNEL_NAME = "python3"
 
@@ -62,6 +64,7 @@ class Layout:
     figures: Path
     build: Path
     expected: Path
+    claims: Path
 
     @classmethod
     def of(cls, root=".", *, figures_dir=None, build_dir=None) -> "Layout":
@@ -73,6 +76,7 @@ class Layout:
             figures=Path(figures_dir).resolve() if figures_dir else root / "figures",
             build=Path(build_dir).resolve() if build_dir else root / "build",
             expected=root / "tests" / "expected",
+            claims=root / "tests" / "claims",
         )
 
 
@@ -240,15 +244,28 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
         that ran successfully.
     """
     layout = Layout.of(root, figures_dir=figures_dir, build_dir=build_dir)
-    expected = repro.load_expected(layout.expected)  # fail before any work when it is missing
     notebooks = find_notebooks(layout.notebooks, only)
+    # fail before any work when a selected notebook's expected statistics are missing or malformed
+    expected = repro.load_expected(layout.expected, notebooks=[path.stem for path in notebooks])
     tasks = [(path, layout, quality, seed, timeout) for path in notebooks]
     runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=progress, desc="notebooks")
     finished = [run.notebook for run in runs if run.ok]
     table = repro.check_stats(layout.figures, expected, notebooks=finished)
     all_stems = [path.stem for path in find_notebooks(layout.notebooks)]
-    write_index(layout, all_stems, expected)
+    write_index(layout, all_stems, _expected_for_index(layout, all_stems))
     return runs, table
+
+
+def _expected_for_index(layout: Layout, stems) -> dict:
+    """Every notebook's expected statistics; a notebook whose file is malformed is left out (its index
+    section then says it has no valid entry) so that running one notebook never depends on another's file."""
+    expected = {}
+    for stem in stems:
+        try:
+            expected.update(repro.load_expected(layout.expected, notebooks=[stem]))
+        except ValueError:
+            continue
+    return expected
 
 
 def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, build_dir=None) -> pd.DataFrame:
@@ -296,7 +313,7 @@ def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, bui
     if failed:
         raise RuntimeError("seed study: notebooks failed: " + "; ".join(failed))
     values: dict[tuple[str, str], list] = {}
-    for (path, seeded_layout, *_), run in zip(tasks, runs):
+    for (_path, seeded_layout, *_), run in zip(tasks, runs):
         statistics = repro.load_stats(seeded_layout.figures / run.notebook / repro.STATS_FILE)
         for name, value in repro.statistics_without_times(statistics).items():
             values.setdefault((run.notebook, name), []).append(value)
@@ -315,41 +332,135 @@ def _spread(notebook: str, statistic: str, items: list) -> dict:
 
 
 def write_index(layout: Layout, stems, expected: dict) -> Path:
-    """Write ``figures/INDEX.md``: paper, figure, notebook, files and statistics."""
+    """Write ``figures/INDEX.md`` and a claims ledger per paper (``figures/ledger_<paper>.md``).
+
+    The index opens with the provenance of the statistics (how many of each kind per
+    paper and per notebook), the run quality of each notebook, the expected failures
+    (paper claims we miss) in one list, and links to the ledgers; then each notebook's
+    files and statistics.
+    """
     table = repro.check_stats(layout.figures, expected, notebooks=stems)
+    ledgers = _write_ledgers(layout, table)
     lines = [
         "# Figures",
         "",
-        "Written by `python -m paperlib reproduce`; do not edit. Each statistic is shown with",
-        "the value recorded by the last run, what `tests/expected_stats.toml` expects, and where",
-        "that expectation comes from.",
+        "Written by `python -m paperlib reproduce`; do not edit. Each statistic is shown with the value recorded",
+        "by the last run, what `tests/expected/<notebook>.toml` expects, its kind (where the bound comes from:",
+        "`paper`, `oracle`, `truth`, `seed-study`, `budget`; see DESIGN.md) and its source. Wall times (`time_*`)",
+        "are shown, never asserted.",
         "",
+        *_provenance_section(layout, table, stems),
+        *_ledger_section(ledgers),
+        *_expected_failures_section(table),
     ]
     for stem in stems:
-        paper, figure = paper_and_figure(stem)
-        folder = layout.figures / stem
-        files = sorted(p.name for p in folder.iterdir() if p.is_file()) if folder.is_dir() else []
-        lines += [
-            f"## {stem}",
-            "",
-            f"- paper: {PAPERS.get(paper, 'none (project data)')}",
-            f"- figure: {figure or 'none'}",
-            f"- notebook: [`notebooks/{stem}.ipynb`](../notebooks/{stem}.ipynb)",
-            "- files: " + (", ".join(f"[{name}]({stem}/{name})" for name in files) or "none yet"),
-            "",
-            "| statistic | value | expected | tolerance | ok | source |",
-            "|---|---|---|---|---|---|",
-        ]
-        for row in table[table.notebook == stem].itertuples():
-            value = "" if row.value is None else json.dumps(row.value)
-            value = value if len(value) <= 60 else value[:57] + "..."
-            ok = "yes" if row.ok else f"NO: {row.reason}"
-            lines.append(f"| {row.statistic} | {value} | {row.expected} | {row.tolerance} | {ok} | {row.source} |")
-        lines.append("")
+        lines += _notebook_section(layout, stem, table[table.notebook == stem])
     index = layout.figures / "INDEX.md"
     with repro.atomic_path(index) as temporary:
         temporary.write_text("\n".join(lines))
     return index
+
+
+def _stored_quality(folder: Path) -> str:
+    """The quality (``ci``/``paper``) of the run whose ``stats.json`` is in ``folder``."""
+    try:
+        return repro.load_stats(folder / repro.STATS_FILE).get("quality", "?")
+    except ValueError:
+        return "not run"
+
+
+def _provenance_section(layout: Layout, table: pd.DataFrame, stems) -> list[str]:
+    asserted = table[table.status != "shown"]
+    counts = pd.crosstab(asserted.notebook, asserted.kind).reindex(index=stems, columns=list(repro.KINDS),
+                                                                    fill_value=0)
+    papers = counts.groupby([paper_and_figure(stem)[0] or "project data" for stem in counts.index]).sum()
+    papers.loc["all"] = counts.sum()
+    kinds = " | ".join(repro.KINDS)
+
+    def numbers(row) -> str:
+        return " | ".join(str(int(n)) for n in row) + f" | {int(row.sum())} |"
+
+    return [
+        "## Provenance of the statistics",
+        "",
+        "Asserted statistics by kind:",
+        "",
+        f"| paper | {kinds} | total |",
+        "|---" * (len(repro.KINDS) + 2) + "|",
+        *[f"| {paper} | {numbers(row)}" for paper, row in papers.iterrows()],
+        "",
+        f"| notebook | quality of the recorded run | {kinds} | total |",
+        "|---" * (len(repro.KINDS) + 3) + "|",
+        *[f"| {stem} | {_stored_quality(layout.figures / stem)} | {numbers(row)}" for stem, row in counts.iterrows()],
+        "",
+    ]
+
+
+def _write_ledgers(layout: Layout, table: pd.DataFrame) -> dict[str, tuple[Path, pd.Series]]:
+    """Write ``ledger_<paper>.md`` for every claims file; return paper -> (path, verdict counts)."""
+    written = {}
+    for path in sorted(layout.claims.glob("*.toml")) if layout.claims.is_dir() else []:
+        try:
+            claims = load_claims(path)
+        except ValueError:
+            continue  # tests/test_claims.py names the problem; the index must still be written
+        notebooks = table[table.notebook.str.startswith(f"{claims.paper}_")]
+        ledger = ledger_table(claims, notebooks)
+        target = write_ledger(layout.figures / f"ledger_{claims.paper}.md", PAPERS.get(claims.paper, claims.paper),
+                              ledger)
+        written[claims.paper] = (target, ledger.verdict.value_counts())
+    return written
+
+
+def _ledger_section(ledgers) -> list[str]:
+    if not ledgers:
+        return []
+    lines = ["## Claims ledgers", "", "| paper | ledger | " + " | ".join(VERDICTS) + " |",
+             "|---|---|" + "---|" * len(VERDICTS)]
+    for paper, (path, counts) in ledgers.items():
+        lines.append(f"| {PAPERS.get(paper, paper)} | [{path.name}]({path.name}) | "
+                     + " | ".join(str(int(counts.get(verdict, 0))) for verdict in VERDICTS) + " |")
+    return lines + [""]
+
+
+def _expected_failures_section(table: pd.DataFrame) -> list[str]:
+    missed = table[table.status == "xfail"]
+    lines = ["## Paper claims we miss (expected failures)", ""]
+    if missed.empty:
+        return lines + ["None.", ""]
+    lines += ["| notebook | statistic | value | paper's bound | measured and why |", "|---|---|---|---|---|"]
+    for row in missed.itertuples():
+        lines.append(f"| {row.notebook} | {row.statistic} | {_value_text(row.value)} | {row.expected} | "
+                     f"{row.reason.removeprefix('expected failure: ')} |")
+    return lines + [""]
+
+
+def _value_text(value) -> str:
+    text = "" if value is None else json.dumps(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _notebook_section(layout: Layout, stem: str, rows: pd.DataFrame) -> list[str]:
+    paper, figure = paper_and_figure(stem)
+    folder = layout.figures / stem
+    files = sorted(p.name for p in folder.iterdir() if p.is_file()) if folder.is_dir() else []
+    lines = [
+        f"## {stem}",
+        "",
+        f"- paper: {PAPERS.get(paper, 'none (project data)')}",
+        f"- figure: {figure or 'none'}",
+        f"- quality of the recorded run: {_stored_quality(folder)}",
+        f"- notebook: [`notebooks/{stem}.ipynb`](../notebooks/{stem}.ipynb)",
+        "- files: " + (", ".join(f"[{name}]({stem}/{name})" for name in files) or "none yet"),
+        "",
+        "| statistic | value | expected | tolerance | kind | status | source |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for row in rows.itertuples():
+        status = row.status if row.status in repro.OK_STATUSES else f"{row.status}: {row.reason}"
+        lines.append(f"| {row.statistic} | {_value_text(row.value)} | {row.expected} | {row.tolerance} | "
+                     f"{row.kind} | {status} | {row.source} |")
+    return lines + [""]
 
 
 def format_summary(runs, table: pd.DataFrame) -> str:

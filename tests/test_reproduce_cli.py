@@ -45,21 +45,24 @@ def project(tmp_path):
         repro.record("quality_seen", quality)
         """,
     )
-    (tmp_path / "tests").mkdir()
-    (tmp_path / "tests" / "expected_stats.toml").write_text(
+    (tmp_path / "tests" / "expected").mkdir(parents=True)
+    (tmp_path / "tests" / "expected" / "kim2009_fig01_demo.toml").write_text(
         textwrap.dedent(
             f"""
-            [kim2009_fig01_demo.answer]
+            [answer]
+            kind = "truth"
             value = 42
             source = "ground truth"
 
-            [kim2009_fig01_demo.executable]
+            [executable]
+            kind = "truth"
             value = {json.dumps(sys.executable)}
-            source = "the kernel must be this interpreter"
+            source = "by construction: the kernel must be this interpreter"
 
-            [kim2009_fig01_demo.quality_seen]
+            [quality_seen]
+            kind = "truth"
             value = "ci"
-            source = "the --quality flag reaches the notebook"
+            source = "by construction: the --quality flag reaches the notebook"
             """
         )
     )
@@ -82,7 +85,8 @@ def test_success_publishes_figures_index_and_executed_copy(project, capsys):
     executed = nbformat.read(project / "build" / "notebooks" / "kim2009_fig01_demo.ipynb", as_version=4)
     assert any(cell.get("outputs") is not None for cell in executed.cells)
     index = (project / "figures" / "INDEX.md").read_text()
-    assert "Kim" in index and "fig01" in index and "| answer | 42 | 42 | exact | yes |" in index
+    assert "Kim" in index and "fig01" in index and "| answer | 42 | 42 | exact | truth | pass |" in index
+    assert "| kim2009_fig01_demo | ci | 0 | 0 | 3 | 0 | 0 | 3 |" in index  # provenance: three truths
 
 
 def test_unknown_pattern_is_one_clear_line(project, capsys):
@@ -92,7 +96,7 @@ def test_unknown_pattern_is_one_clear_line(project, capsys):
 
 
 def test_missing_expected_file(project, capsys):
-    (project / "tests" / "expected_stats.toml").unlink()
+    (project / "tests" / "expected" / "kim2009_fig01_demo.toml").unlink()
     assert run_cli(project) == 2
     assert "expected statistics file not found" in capsys.readouterr().err
 
@@ -115,13 +119,14 @@ def test_wrong_and_missing_statistics_fail(project, capsys):
     err = capsys.readouterr().err
     assert "statistic 'answer': expected a number, got str" in err
     assert "statistic 'executable': expected but not recorded" in err
-    assert "statistic 'stray': recorded but not in expected_stats.toml" in err
+    assert "statistic 'stray': recorded but not in tests/expected/" in err
 
 
 def test_parallel_jobs_run_every_selected_notebook(project, capsys):
     write_notebook(project, "simhon2001_fig02_other", 'repro.record("answer", 1)')
-    with (project / "tests" / "expected_stats.toml").open("a") as handle:
-        handle.write('\n[simhon2001_fig02_other.answer]\nvalue = 1\nsource = "ground truth"\n')
+    (project / "tests" / "expected" / "simhon2001_fig02_other.toml").write_text(
+        '[answer]\nkind = "truth"\nvalue = 1\nsource = "ground truth"\n'
+    )
     assert run_cli(project, "--jobs", "2") == 0
     assert (project / "figures" / "simhon2001_fig02_other" / "stats.json").exists()
     assert run_cli(project, "--only", "simhon*") == 0
