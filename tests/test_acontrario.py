@@ -388,13 +388,9 @@ def test_outlier_intervals_rejects_modes_outside_the_histogram():
 # --------------------------------------------------------------------------- speed
 
 
-def test_a_few_hundred_bins_take_well_under_a_second():
-    import time
-
+def test_a_few_hundred_bins_find_the_two_modes():
     rng = np.random.default_rng(0)
     values = np.concatenate([rng.normal(0.3, 0.05, 50_000), rng.normal(0.7, 0.02, 50_000)])
     counts, _ = np.histogram(values, bins=300, range=(0, 1))
-    start = time.perf_counter()
-    modes = maximal_meaningful_modes(counts)
-    assert time.perf_counter() - start < 1.0
+    modes = maximal_meaningful_modes(counts)  # speed: benchmarks/, never a wall time in a test
     assert len(modes) == 2

@@ -7,7 +7,6 @@ the greedy clustering then recovers the truth at that epsilon.
 """
 
 import dataclasses
-import time
 
 import numpy as np
 import pytest
@@ -456,11 +455,11 @@ def test_region_size_controls_the_count():
 
 
 @pytest.mark.parametrize("name", list(GENERATORS))
-def test_generators_are_fast(name):
-    GENERATORS[name](rng=5)  # warm-up
-    start = time.perf_counter()
-    GENERATORS[name](rng=6)
-    assert time.perf_counter() - start < 0.5  # ~1-25 ms on a quiet machine; generous for a shared one
+def test_generators_are_seeded(name):
+    # speed is measured in benchmarks/, never asserted as a wall time in a test
+    first, second = GENERATORS[name](rng=6), GENERATORS[name](rng=6)
+    assert first.n_elements == second.n_elements
+    assert all(np.array_equal(a.points, b.points) for a, b in zip(first.strokes, second.strokes))
 
 
 # --------------------------------------------------------------------------- bad arguments

@@ -179,16 +179,11 @@ def test_dead_leaves_cap_warns_when_target_not_reached():
     assert labels.max() == 9
 
 
-def test_dead_leaves_seeded_and_fast():
-    import time
-
+def test_dead_leaves_seeded():
     first = dead_leaves((256, 256), coverage_target=1.0, r_min=1.0, r_max=32.0, rng=42)
-    start = time.perf_counter()
     second = dead_leaves((256, 256), coverage_target=1.0, r_min=1.0, r_max=32.0, rng=42)
-    elapsed = time.perf_counter() - start
     np.testing.assert_array_equal(first, second)
     assert not np.array_equal(first, dead_leaves((256, 256), coverage_target=1.0, r_min=1.0, r_max=32.0, rng=43))
-    assert elapsed < 1.0
     assert first.dtype == np.float64 and first.min() >= 0 and first.max() <= 1
 
 
