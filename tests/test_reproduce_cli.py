@@ -150,3 +150,33 @@ def test_paper_and_figure():
 def test_bad_jobs_rejected_by_argparse(project):
     with pytest.raises(SystemExit):
         run_cli(project, "--jobs", "0")
+
+
+def test_missed_paper_claim_is_listed_once_and_the_ledger_written(project, capsys):
+    with (project / "tests" / "expected" / "kim2009_fig01_demo.toml").open("a") as handle:
+        handle.write(
+            '\n[answer_paper]\nkind = "paper"\nmin = 50\nsource = "paper, section 3: at least 50"\n'
+            'xfail = "measured 42 at seed 0; cause: the demo computes 6 * 7"\n'
+        )
+    write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", 42)\nrepro.record("answer_paper", 42)\n'
+                   'import sys\nrepro.record("executable", sys.executable)\nrepro.record("quality_seen", quality)')
+    (project / "tests" / "claims").mkdir()
+    (project / "tests" / "claims" / "kim2009.toml").write_text(
+        'paper = "kim2009"\nfigures = 1\n\n[[claim]]\nwhere = "Fig. 1"\nclaim = "at least 50"\n'
+        'statistics = ["kim2009_fig01_demo.answer_paper"]\nwhy = "the demo computes 6 * 7"\n'
+    )
+    assert run_cli(project) == 0  # an expected failure does not fail the run
+    index = (project / "figures" / "INDEX.md").read_text()
+    assert "| kim2009_fig01_demo | answer_paper | 42 | >= 50 | measured 42 at seed 0; cause: the demo" in index
+    assert "[ledger_kim2009.md](ledger_kim2009.md) | 0 | 0 | 1 | 0 |" in index
+    ledger = (project / "figures" / "ledger_kim2009.md").read_text()
+    assert "| Fig. 1 | at least 50 | `kim2009_fig01_demo.answer_paper` (paper: 42, xfail) | not |" in ledger
+
+
+def test_seed_study_prints_each_statistics_spread(project, capsys):
+    write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", seed * 2)\nrepro.record("time_x", 1.0)')
+    assert main(["seed-study", "--root", str(project), "--only", "demo", "--seeds", "3-5"]) == 0
+    out = capsys.readouterr().out
+    assert "answer" in out and "[6, 8, 10]" in out and "time_x" not in out
+    assert not (project / "figures").exists()  # a seed study never writes the committed figures
+    assert main(["seed-study", "--root", str(project), "--only", "demo", "--seeds", "3"]) == 2
