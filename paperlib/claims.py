@@ -25,13 +25,13 @@ statistics.
 from __future__ import annotations
 
 import re
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 import pandas as pd
 
 from ._atomic import atomic_path
+from .repro import read_toml
 
 __all__ = ["Claim", "Claims", "VERDICTS", "claim_problems", "ledger_table", "load_claims", "write_ledger"]
 
@@ -81,12 +81,7 @@ def load_claims(path) -> Claims:
         verdict, a malformed statistic reference or a lowered verdict without a reason.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise ValueError(f"claims file not found: {path}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: invalid TOML ({exc})") from None
+    data = read_toml(path, "claims")
     if data.get("paper") != path.stem:
         raise ValueError(f"{path}: 'paper' must be the file's stem {path.stem!r}, got {data.get('paper')!r}")
     figures = data.get("figures")

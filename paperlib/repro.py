@@ -301,18 +301,20 @@ def load_expected(path, notebooks=None) -> dict:
         files = sorted(path.glob("*.toml")) if path.is_dir() else [path]
     if not files:
         raise ValueError(f"expected statistics folder {path} holds no .toml file")
-    expected = {file.stem: _read_toml(file) for file in files}
+    expected = {file.stem: read_toml(file) for file in files}
     for file, statistics in zip(files, expected.values()):
         for statistic, spec in statistics.items():
             _validate_spec(spec, f"{file}: [{statistic}]", statistic)
     return expected
 
 
-def _read_toml(path: Path) -> dict:
+def read_toml(path, what: str = "expected statistics") -> dict:
+    """A TOML file's content; a missing or malformed file is a ValueError naming ``what`` and the path."""
+    path = Path(path)
     try:
         return tomllib.loads(path.read_text())
     except FileNotFoundError:
-        raise ValueError(f"expected statistics file not found: {path}") from None
+        raise ValueError(f"{what} file not found: {path}") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: invalid TOML ({exc})") from None
 
