@@ -30,8 +30,33 @@ from paperlib.reproduce import reproduce
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 EXPECTED = repro.load_expected(ROOT / "tests" / "expected")
-#: Environment of the third run: another processor's code generation on this machine.
-SECOND_TARGET = {"NUMBA_CPU_NAME": "generic", "OPENBLAS_CORETYPE": "Prescott"}
+
+
+#: Imports NumPy's CPU tables: the features it dispatches to beyond its baseline (AVX2, AVX-512...)
+#: and the features this process may use.
+_NUMPY_CPU_TABLES = """
+try:
+    from numpy._core._multiarray_umath import __cpu_dispatch__, __cpu_features__
+except ImportError:  # NumPy 1.x
+    from numpy.core._multiarray_umath import __cpu_dispatch__, __cpu_features__
+"""
+
+
+def _numpy_dispatched_features() -> list[str]:
+    tables = {}
+    exec(_NUMPY_CPU_TABLES, tables)
+    return list(tables["__cpu_dispatch__"])
+
+
+#: Environment of the third run: another processor's code generation on this machine. numba
+#: compiles for a generic x86-64 CPU, OpenBLAS runs its oldest x86-64 kernels, and NumPy its
+#: baseline loops: NumPy's AVX-512 exp, log and arctan differ from its baseline ones in the
+#: last bit, which is what made a Markov chain diverge on another processor.
+SECOND_TARGET = {
+    "NUMBA_CPU_NAME": "generic",
+    "OPENBLAS_CORETYPE": "Prescott",
+    "NPY_DISABLE_CPU_FEATURES": " ".join(_numpy_dispatched_features()),
+}
 CELL_TIMEOUT = 1800  # seconds; a hung cell fails the run instead of eating CI's budget
 ids = [path.stem for path in NOTEBOOKS]
 
@@ -87,11 +112,12 @@ def test_default_output_is_under_build(path):
     assert f'out_dir = "../build/figures/{path.stem}"' in parameters.source
 
 
-_TARGET_PROBE = (
+_TARGET_PROBE = _NUMPY_CPU_TABLES + (
     "import json, numba, numpy, threadpoolctl\n"
     "numpy.ones((64, 64)) @ numpy.ones((64, 64))\n"
     "blas = [i for i in threadpoolctl.threadpool_info() if i['internal_api'] == 'openblas']\n"
-    "print(json.dumps({'numba': numba.config.CPU_NAME or 'host', 'openblas': blas[0]['architecture'] if blas else ''}))"
+    "print(json.dumps({'numba': numba.config.CPU_NAME or 'host', 'openblas': blas[0]['architecture'] if blas else '',\n"
+    "                  'numpy': [f for f in __cpu_dispatch__ if __cpu_features__.get(f)]}))"
 )
 
 
@@ -108,6 +134,7 @@ def test_second_target_changes_code_generation():
     assert second["numba"] == "generic" != native["numba"]
     # OpenBLAS names its Prescott kernels after the older core it shares them with (e.g. "Katmai")
     assert second["openblas"] and second["openblas"] != native["openblas"]
+    assert second["numpy"] == []  # NumPy runs its baseline loops only
 
 
 @contextmanager
