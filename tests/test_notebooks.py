@@ -205,3 +205,10 @@ def test_same_seed_same_statistics(first_run, second_run, stem):
     b = repro.load_stats(figures_b / stem / repro.STATS_FILE)
     assert repro.statistics_without_times(a) == repro.statistics_without_times(b)
     assert a["seed"] == b["seed"] and a["quality"] == b["quality"] == "ci"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=ids)
+def test_committed_figures_are_at_paper_quality(path):
+    """figures/ holds one quality, the paper's: only `make reproduce` writes there."""
+    stats = repro.load_stats(ROOT / "figures" / path.stem / repro.STATS_FILE)
+    assert stats["quality"] == "paper", f"figures/{path.stem} was written at {stats['quality']!r}: run make reproduce"
