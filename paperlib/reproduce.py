@@ -385,7 +385,7 @@ def _provenance_section(layout: Layout, table: pd.DataFrame, stems) -> list[str]
         "",
         "Asserted statistics by kind:",
         "",
-        f"| paper | {kinds} | total |",
+        f"| notebooks of | {kinds} | total |",
         "|---" * (len(repro.KINDS) + 2) + "|",
         *[f"| {paper} | {numbers(row)}" for paper, row in papers.iterrows()],
         "",
