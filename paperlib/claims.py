@@ -133,7 +133,7 @@ def claim_problems(claims: Claims, expected: dict) -> list[str]:
             notebook, statistic = reference.split(".", 1)
             spec = expected.get(notebook, {}).get(statistic)
             if spec is None:
-                problems.append(f"{claims.paper}: {claim.where}: {reference} is not in tests/expected/")
+                problems.append(f"{claims.paper}: {claim.where}: {reference} is not in tests/expected_stats.toml")
             elif _has_xfail(spec) and not claim.why:
                 problems.append(f"{claims.paper}: {claim.where}: {reference} is an expected failure: say 'why'")
     for notebook, statistics in expected.items():

@@ -4,22 +4,22 @@ A notebook calls :func:`start` once with its papermill parameters, then
 :func:`record` for every quantitative claim and :func:`save_figure` for every figure.
 Everything lands in ``out_dir`` (by convention ``figures/<notebook-stem>/``):
 ``stats.json`` holds the run's seed, quality and statistics. :func:`check_stats`
-compares those files with the expected statistics in ``tests/expected/``.
+compares those files with ``tests/expected_stats.toml``.
 
-``tests/expected/<notebook>.toml`` has one table per statistic::
+The expected file has one table per notebook and statistic::
 
-    [n_coastlines]
+    [datasets_overview.n_hershey_fonts]
     kind = "truth"
-    value = 40
-    source = "ground truth: the loader is asked for 40 curves"
+    value = 32
+    source = "ground truth: Hershey-Fonts 2.1 bundles 32 fonts"
 
-    [glcm_pearson]
+    [kim2009_fig07-08_distributions_glcm.glcm_pearson]
     kind = "paper"
     min = 0.99
     source = "paper, section 3.3 and Fig. 8: coefficients 'greater than 0.99'"
     xfail = "measured 0.93-0.95 (seeds 0-4); cause: ..."   # a paper claim we miss
 
-    [tone_error]
+    [kim2009_fig04_tone_extraction.tone_error]
     kind = "seed-study"
     max = 0.05
     source = "seeds 0-9: 0.007-0.034"
@@ -75,7 +75,7 @@ TIME_PREFIX = "time_"
 CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "kind", "source", "status", "ok", "reason"]
 #: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time.
 OK_STATUSES = ("pass", "xfail", "shown")
-EXPECTED_DIR = "tests/expected/"
+EXPECTED_FILE = "tests/expected_stats.toml"
 
 _NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_.\-]*$")
 _MAX_ITEMS = 10_000  # a statistic is a number or a small table, never raw data
@@ -277,34 +277,33 @@ def statistics_without_times(data: dict) -> dict:
 
 
 def load_expected(path, notebooks=None) -> dict:
-    """Read and validate the expected statistics: ``{notebook: {statistic: spec}}``.
+    """Read and validate ``expected_stats.toml``: ``{notebook: {statistic: spec}}``.
 
     Parameters
     ----------
     path : str or Path
-        A folder of ``<notebook>.toml`` files (the project's ``tests/expected/``), or
-        one such file; each file's tables are its notebook's statistics.
+        The file; its tables are ``[<notebook>.<statistic>]``.
     notebooks : iterable of str, optional
-        Read only these notebooks' files from the folder (each must exist).
+        Return and validate only these notebooks' statistics (so that running one
+        notebook does not depend on another's entries); a notebook without entries
+        gets none.
 
     Raises
     ------
     ValueError
-        Naming the file and entry, when a file is missing or malformed, or an entry has
-        no ``kind``, a kind its ``source`` does not support, a bound on a wall time, or
-        an ``xfail`` that is not a missed paper claim with its measured value.
+        Naming the file and entry, when the file is missing or malformed, or an entry
+        has no ``kind``, a kind its ``source`` does not support, a bound on a wall time,
+        or an ``xfail`` that is not a missed paper claim with its measured value.
     """
     path = Path(path)
-    if notebooks is not None and path.is_dir():
-        files = [path / f"{notebook}.toml" for notebook in notebooks]
-    else:
-        files = sorted(path.glob("*.toml")) if path.is_dir() else [path]
-    if not files:
-        raise ValueError(f"expected statistics folder {path} holds no .toml file")
-    expected = {file.stem: read_toml(file) for file in files}
-    for file, statistics in zip(files, expected.values()):
+    expected = read_toml(path)
+    if notebooks is not None:
+        expected = {notebook: expected[notebook] for notebook in notebooks if notebook in expected}
+    for notebook, statistics in expected.items():
+        if not isinstance(statistics, dict):
+            raise ValueError(f"{path}: [{notebook}] must be a table of statistics")
         for statistic, spec in statistics.items():
-            _validate_spec(spec, f"{file}: [{statistic}]", statistic)
+            _validate_spec(spec, f"{path}: [{notebook}.{statistic}]", statistic)
     return expected
 
 
@@ -442,7 +441,7 @@ def _first_reason(items) -> str:
     return ""
 
 
-def check_stats(figures_dir="figures", expected=EXPECTED_DIR, notebooks=None) -> pd.DataFrame:
+def check_stats(figures_dir="figures", expected=EXPECTED_FILE, notebooks=None) -> pd.DataFrame:
     """Compare recorded statistics with the expected file.
 
     Parameters
@@ -490,7 +489,7 @@ def _row(notebook, statistic, value=None, expected="", tolerance="", kind="", so
 
 def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dict]:
     if specs is None:
-        return [_row(notebook, "", reason=f"notebook has no entry in {EXPECTED_DIR}")]
+        return [_row(notebook, "", reason=f"notebook has no entry in {EXPECTED_FILE}")]
     try:
         data = load_stats(folder / STATS_FILE)
     except ValueError as exc:
@@ -503,7 +502,7 @@ def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dic
             rows.append(_row(notebook, statistic, recorded[statistic], "shown, not asserted", "", "time",
                              "wall time of this run on this machine", status="shown"))
         else:
-            rows.append(_row(notebook, statistic, recorded[statistic], reason=f"recorded but not in {EXPECTED_DIR}"))
+            rows.append(_row(notebook, statistic, recorded[statistic], reason=f"recorded but not in {EXPECTED_FILE}"))
     return rows
 
 

@@ -10,7 +10,7 @@ This is what ``python -m paperlib reproduce`` and ``make reproduce`` do:
 3. each notebook writes into a staging folder ``build/staging/<stem>/`` that replaces
    ``figures/<stem>/`` only when the notebook finished, so ``figures/`` never holds a
    half-run notebook;
-4. check the recorded statistics against ``tests/expected/`` and write
+4. check the recorded statistics against ``tests/expected_stats.toml`` and write
    ``figures/INDEX.md``.
 
 Like :mod:`paperlib.repro`, this module knows no method.
@@ -75,7 +75,7 @@ class Layout:
             notebooks=root / "notebooks",
             figures=Path(figures_dir).resolve() if figures_dir else root / "figures",
             build=Path(build_dir).resolve() if build_dir else root / "build",
-            expected=root / "tests" / "expected",
+            expected=root / "tests" / "expected_stats.toml",
             claims=root / "tests" / "claims",
         )
 
@@ -221,7 +221,7 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
     Parameters
     ----------
     root : str or Path
-        Project root (``notebooks/``, ``tests/expected/``).
+        Project root (``notebooks/``, ``tests/expected_stats.toml``).
     quality : {"ci", "paper"}
     only : str, optional
         Glob or substring selecting notebooks (see :func:`find_notebooks`).
@@ -271,7 +271,7 @@ def _expected_for_index(layout: Layout, stems) -> dict:
 def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, build_dir=None) -> pd.DataFrame:
     """Run notebooks over several seeds and tabulate each statistic's spread.
 
-    This is how a ``seed-study`` bound of ``tests/expected/`` is measured: the range a
+    This is how a ``seed-study`` bound of ``tests/expected_stats.toml`` is measured: the range a
     statistic takes over seeds, on this library. Figures go under
     ``build/seed-study/<quality>/seed-<seed>/``, never into ``figures/``.
 
@@ -345,7 +345,7 @@ def write_index(layout: Layout, stems, expected: dict) -> Path:
         "# Figures",
         "",
         "Written by `python -m paperlib reproduce`; do not edit. Each statistic is shown with the value recorded",
-        "by the last run, what `tests/expected/<notebook>.toml` expects, its kind (where the bound comes from:",
+        "by the last run, what `tests/expected_stats.toml` expects, its kind (where the bound comes from:",
         "`paper`, `oracle`, `truth`, `seed-study`, `budget`; see DESIGN.md) and its source. Wall times (`time_*`)",
         "are shown, never asserted.",
         "",

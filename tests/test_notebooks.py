@@ -3,7 +3,7 @@
 Every notebook runs three times at CI quality with the same seeds, into temporary
 folders (the committed figures/ are left alone):
 
-1. natively: its statistics must satisfy ``tests/expected/<notebook>.toml``;
+1. natively: its statistics must satisfy ``tests/expected_stats.toml``;
 2. natively again: the statistics must be identical, bit for bit, apart from wall times
    (``time_*``): same seed, same machine, same output;
 3. under a second code-generation target (:data:`SECOND_TARGET`: numba compiling for a
@@ -29,7 +29,7 @@ from paperlib.reproduce import reproduce
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
-EXPECTED = repro.load_expected(ROOT / "tests" / "expected")
+EXPECTED = repro.load_expected(ROOT / "tests" / "expected_stats.toml")
 
 
 #: Imports NumPy's CPU tables: the features it dispatches to beyond its baseline (AVX2, AVX-512...)
@@ -66,7 +66,7 @@ def test_there_are_notebooks():
 
 
 def test_every_expected_entry_has_a_notebook():
-    assert set(EXPECTED) <= {path.stem for path in NOTEBOOKS}, "tests/expected/ names a notebook that is gone"
+    assert set(EXPECTED) <= {path.stem for path in NOTEBOOKS}, "expected_stats.toml names a notebook that is gone"
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=ids)
@@ -100,7 +100,7 @@ def test_stored_without_outputs(path):
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=ids)
 def test_has_expected_statistics(path):
-    assert EXPECTED.get(path.stem), f"{path.stem} has no file in tests/expected/"
+    assert EXPECTED.get(path.stem), f"{path.stem} has no entry in tests/expected_stats.toml"
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=ids)

@@ -2,6 +2,7 @@
 
 import json
 import math
+import re
 
 import matplotlib
 
@@ -133,11 +134,11 @@ xfail = "measured 0.93 at seeds 0-4; cause: fewer offsets"
 """
 
 
-def expected_folder(tmp_path, text=EXPECTED, notebook="demo_nb"):
-    folder = tmp_path / "expected"
-    folder.mkdir(exist_ok=True)
-    (folder / f"{notebook}.toml").write_text(text)
-    return folder
+def expected_file(tmp_path, text=EXPECTED, notebook="demo_nb"):
+    """Write ``text``, whose tables are one notebook's statistics, as an expected_stats.toml."""
+    path = tmp_path / "expected_stats.toml"
+    path.write_text(re.sub(r"^\[(\w+)", rf"[{notebook}.\1", text, flags=re.MULTILINE))
+    return path
 
 
 GOOD = [("count", 7), ("mean", 0.54), ("curve", [1.0, 2.0]), ("ratio", 0.95), ("label", "ok"), ("missed", 0.93)]
@@ -146,7 +147,7 @@ GOOD = [("count", 7), ("mean", 0.54), ("curve", [1.0, 2.0]), ("ratio", 0.95), ("
 def test_check_stats_all_ok_with_an_expected_failure_and_a_wall_time(tmp_path, run_dir):
     for name, value in GOOD + [("time_total", 3.0)]:
         repro.record(name, value)
-    table = repro.check_stats(run_dir.parent, expected_folder(tmp_path))
+    table = repro.check_stats(run_dir.parent, expected_file(tmp_path))
     assert list(table.columns) == repro.CHECK_COLUMNS
     assert table.ok.all(), table[~table.ok]
     status = table.set_index("statistic").status.to_dict()
@@ -158,7 +159,7 @@ def test_check_stats_all_ok_with_an_expected_failure_and_a_wall_time(tmp_path, r
 def test_an_expected_failure_that_passes_fails_the_run(tmp_path, run_dir):
     for name, value in GOOD:
         repro.record(name, 0.995 if name == "missed" else value)
-    table = repro.check_stats(run_dir.parent, expected_folder(tmp_path)).set_index("statistic")
+    table = repro.check_stats(run_dir.parent, expected_file(tmp_path)).set_index("statistic")
     assert table.status["missed"] == "XPASS" and not table.ok["missed"]
     assert "remove 'xfail'" in table.reason["missed"]
 
@@ -171,14 +172,14 @@ def test_check_stats_reports_each_problem(tmp_path, run_dir):
     repro.record("extra", 1)  # not expected
     repro.record("missed", 0.5)
     repro.record("time_total", 300.0)  # never a failure
-    table = repro.check_stats(run_dir.parent, expected_folder(tmp_path)).set_index("statistic")
+    table = repro.check_stats(run_dir.parent, expected_file(tmp_path)).set_index("statistic")
     reasons = table.reason.to_dict()
     assert "differs" in reasons["count"]
     assert "expected a number" in reasons["mean"]
     assert "list of 2" in reasons["curve"]
     assert "above the maximum" in reasons["ratio"]
     assert reasons["label"] == "expected but not recorded"
-    assert reasons["extra"] == "recorded but not in tests/expected/"
+    assert reasons["extra"] == "recorded but not in tests/expected_stats.toml"
     assert table.ok.to_dict() == {"count": False, "mean": False, "curve": False, "ratio": False, "label": False,
                                   "missed": True, "extra": False, "time_total": True}
 
@@ -187,14 +188,14 @@ def test_quality_override_applies(tmp_path):
     out = repro.start(tmp_path / "figs" / "demo_nb", seed=0, quality="paper")
     repro.record("ratio", 0.95)
     spec = '[ratio]\nkind = "seed-study"\nmin = 0.9\nmax = 1.1\nsource = "seeds 0-9"\npaper = { min = 0.99 }\n'
-    table = repro.check_stats(out.parent, expected_folder(tmp_path, spec))
+    table = repro.check_stats(out.parent, expected_file(tmp_path, spec))
     assert not table.ok.iloc[0] and "below the minimum 0.99" in table.reason.iloc[0]
 
 
 def test_check_stats_missing_notebook_outputs(tmp_path):
-    table = repro.check_stats(tmp_path, expected_folder(tmp_path), notebooks=["demo_nb", "other"])
+    table = repro.check_stats(tmp_path, expected_file(tmp_path), notebooks=["demo_nb", "other"])
     assert "no stats.json" in table.reason.iloc[0]
-    assert table.reason.iloc[1] == "notebook has no entry in tests/expected/"
+    assert table.reason.iloc[1] == "notebook has no entry in tests/expected_stats.toml"
 
 
 SOURCE = 'kind = "truth"\nsource = "ground truth: known"\n'
@@ -225,22 +226,21 @@ SOURCE = 'kind = "truth"\nsource = "ground truth: known"\n'
 )
 def test_load_expected_rejects_malformed_specs(tmp_path, text, message):
     with pytest.raises(ValueError, match=message):
-        repro.load_expected(expected_folder(tmp_path, text))
+        repro.load_expected(expected_file(tmp_path, text))
 
 
-def test_load_expected_reads_a_folder_or_selected_notebooks(tmp_path):
-    folder = expected_folder(tmp_path)
-    (folder / "other.toml").write_text(f"[y]\nvalue = 2\n{SOURCE}")
-    assert set(repro.load_expected(folder)) == {"demo_nb", "other"}
-    assert set(repro.load_expected(folder, notebooks=["other"])) == {"other"}
-    assert set(repro.load_expected(folder / "other.toml")) == {"other"}
+def test_load_expected_validates_only_the_selected_notebooks(tmp_path):
+    path = expected_file(tmp_path)
+    with path.open("a") as handle:
+        handle.write(f"\n[other.y]\nvalue = 2\n{SOURCE}\n[broken.z]\nvalue = 1\nsource = \"no kind\"\n")
+    assert set(repro.load_expected(path, notebooks=["demo_nb", "other", "absent"])) == {"demo_nb", "other"}
+    with pytest.raises(ValueError, match="broken.z"):
+        repro.load_expected(path)
 
 
 def test_load_expected_missing_file(tmp_path):
     with pytest.raises(ValueError, match="not found"):
         repro.load_expected(tmp_path / "nope.toml")
-    with pytest.raises(ValueError, match="no .toml file"):
-        repro.load_expected(tmp_path)
 
 
 def test_statistics_without_times():
@@ -261,7 +261,7 @@ def test_stats_file_is_plain_json(run_dir):
 
 def test_tables_compare_key_by_key_with_tolerance(tmp_path):
     out = repro.start(tmp_path / "figs" / "demo_nb", seed=0, quality="ci")
-    spec = expected_folder(tmp_path, f"[t]\nvalue = {{ a = 1.0, b = 2.0 }}\natol = 0.1\n{SOURCE}")
+    spec = expected_file(tmp_path, f"[t]\nvalue = {{ a = 1.0, b = 2.0 }}\natol = 0.1\n{SOURCE}")
     repro.record("t", {"a": 1.05, "b": 2.0})
     assert repro.check_stats(out.parent, spec).ok.all()
     repro.record("t", {"a": 1.05, "b": 2.5})

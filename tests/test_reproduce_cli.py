@@ -45,21 +45,21 @@ def project(tmp_path):
         repro.record("quality_seen", quality)
         """,
     )
-    (tmp_path / "tests" / "expected").mkdir(parents=True)
-    (tmp_path / "tests" / "expected" / "kim2009_fig01_demo.toml").write_text(
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "expected_stats.toml").write_text(
         textwrap.dedent(
             f"""
-            [answer]
+            [kim2009_fig01_demo.answer]
             kind = "truth"
             value = 42
             source = "ground truth"
 
-            [executable]
+            [kim2009_fig01_demo.executable]
             kind = "truth"
             value = {json.dumps(sys.executable)}
             source = "by construction: the kernel must be this interpreter"
 
-            [quality_seen]
+            [kim2009_fig01_demo.quality_seen]
             kind = "truth"
             value = "ci"
             source = "by construction: the --quality flag reaches the notebook"
@@ -96,7 +96,7 @@ def test_unknown_pattern_is_one_clear_line(project, capsys):
 
 
 def test_missing_expected_file(project, capsys):
-    (project / "tests" / "expected" / "kim2009_fig01_demo.toml").unlink()
+    (project / "tests" / "expected_stats.toml").unlink()
     assert run_cli(project) == 2
     assert "expected statistics file not found" in capsys.readouterr().err
 
@@ -119,14 +119,13 @@ def test_wrong_and_missing_statistics_fail(project, capsys):
     err = capsys.readouterr().err
     assert "statistic 'answer': expected a number, got str" in err
     assert "statistic 'executable': expected but not recorded" in err
-    assert "statistic 'stray': recorded but not in tests/expected/" in err
+    assert "statistic 'stray': recorded but not in tests/expected_stats.toml" in err
 
 
 def test_parallel_jobs_run_every_selected_notebook(project, capsys):
     write_notebook(project, "simhon2001_fig02_other", 'repro.record("answer", 1)')
-    (project / "tests" / "expected" / "simhon2001_fig02_other.toml").write_text(
-        '[answer]\nkind = "truth"\nvalue = 1\nsource = "ground truth"\n'
-    )
+    with (project / "tests" / "expected_stats.toml").open("a") as handle:
+        handle.write('\n[simhon2001_fig02_other.answer]\nkind = "truth"\nvalue = 1\nsource = "ground truth"\n')
     assert run_cli(project, "--jobs", "2") == 0
     assert (project / "figures" / "simhon2001_fig02_other" / "stats.json").exists()
     assert run_cli(project, "--only", "simhon*") == 0
@@ -153,9 +152,9 @@ def test_bad_jobs_rejected_by_argparse(project):
 
 
 def test_missed_paper_claim_is_listed_once_and_the_ledger_written(project, capsys):
-    with (project / "tests" / "expected" / "kim2009_fig01_demo.toml").open("a") as handle:
+    with (project / "tests" / "expected_stats.toml").open("a") as handle:
         handle.write(
-            '\n[answer_paper]\nkind = "paper"\nmin = 50\nsource = "paper, section 3: at least 50"\n'
+            '\n[kim2009_fig01_demo.answer_paper]\nkind = "paper"\nmin = 50\nsource = "paper, section 3: at least 50"\n'
             'xfail = "measured 42 at seed 0; cause: the demo computes 6 * 7"\n'
         )
     write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", 42)\nrepro.record("answer_paper", 42)\n'
