@@ -7,9 +7,15 @@ Exemplars (made untimed) are synthetic: :func:`paperlib.datasets.stipple_tone_te
    example distribution texture is extracted (3.2) from a 256 x 256 synthetic tone texture of
    the given ink tone (sizes = tone in percent); :func:`synthesize_distribution` runs with the
    paper's maximum of 30 iterations and stops at the first iteration that no longer lowers the
-   ACE. Paper: about 12 min for a 256 x 256 texture; target (issue 5): <= 10 s.
-   Baseline, same run: the same synthesis without the geometric constraint of 3.4.2
-   (``geometry=False``), the plain spin flips the paper accelerates.
+   ACE. The default ``spacing="matched"`` runs up to four trial syntheses and keeps the one whose
+   nearest-neighbour distances come closest to the example's. Paper: about 12 min for a 256 x 256
+   texture; target (issues 5 and 18): <= 10 s. Baseline, same run: one synthesis with the
+   paper's radius rule (``spacing="paper"``), so the ratio is the cost of the matched spacing.
+1b. "stipple: synthesize 256x256, paper radius rule": that baseline against the same synthesis
+   without the geometric constraint of 3.4.2 (``geometry=False``), the plain spin flips the
+   paper accelerates.
+1c. "stipple: synthesize NxN from NxN example, paper radius rule": how the cost grows with the
+   side (3 (n - 1) offsets per flip, n^2 pixels: n^3 if the iterations stay the same); tone 50%.
 2. "stipple: 256x256 raw texture, no constraint": the worst case for the 10 s target: the
    bitonal tone texture itself (marks, not their centres) as the example, without the geometric
    constraint, so every pixel is tried in every iteration; it stops by itself after about 16
@@ -39,16 +45,29 @@ def distribution_example(tone_percent: int) -> np.ndarray:
     return extract_distribution(stipple_tone_texture(tone_percent / 100, SIZE, rng=1)).distribution
 
 
-def synthesis(example, iterations=30, geometry=None):
+def synthesis(example, iterations=30, geometry=None, spacing="matched"):
     synthesize_distribution(example[:32, :32], iterations=1, rng=0)  # numba kernels loaded outside the timing
-    return lambda: synthesize_distribution(example, iterations=iterations, geometry=geometry, rng=2)
+    return lambda: synthesize_distribution(example, iterations=iterations, geometry=geometry, spacing=spacing, rng=2)
 
 
 @benchmark("stipple: synthesize 256x256 distribution (<=30 its)", sizes=[10, 50, 85],
-           baseline=lambda tone: synthesis(distribution_example(tone), geometry=False),
-           baseline_name="no geometric constraint (3.4.2)", reference={50: {"Kim 2009 (paper, 256x256)": 720.0}})
+           baseline=lambda tone: synthesis(distribution_example(tone), spacing="paper"),
+           baseline_name="paper's radius rule, one run", reference={50: {"Kim 2009 (paper, 256x256)": 720.0}})
 def synthesize_distribution_case(tone_percent):
     return synthesis(distribution_example(tone_percent))
+
+
+@benchmark("stipple: synthesize 256x256, paper radius rule", sizes=[10, 50, 85],
+           baseline=lambda tone: synthesis(distribution_example(tone), geometry=False),
+           baseline_name="no geometric constraint (3.4.2)")
+def synthesize_paper_rule(tone_percent):
+    return synthesis(distribution_example(tone_percent), spacing="paper")
+
+
+@benchmark("stipple: synthesize NxN from NxN example, paper radius rule", sizes=[128, 256, 512])
+def synthesize_by_side(side):
+    example = extract_distribution(stipple_tone_texture(0.5, side, rng=1)).distribution
+    return synthesis(example, spacing="paper")
 
 
 def raw_example(tone_percent: int) -> np.ndarray:

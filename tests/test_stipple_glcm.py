@@ -354,3 +354,41 @@ def test_ace_change_kernel_is_exact_at_every_pixel_for_any_offsets_and_both_flip
             assert ace_change_kernel(texture, counts, y, x, offsets, target, totals) == pytest.approx(
                 expected, abs=1e-15
             )
+
+
+# --------------------------------------------------------------------------------------------
+# per-direction error changes (the paper's acceptance rule, section 3.4.1)
+
+
+def test_offset_directions_groups_the_papers_three_blocks():
+    from paperlib.stipple.glcm import offset_directions
+
+    groups = offset_directions(paper_offsets(6))
+    np.testing.assert_array_equal(groups, np.repeat([0, 1, 2], 5))
+    np.testing.assert_array_equal(offset_directions(np.array([[0, 2], [1, 1], [0, 1], [-2, -2], [2, 2]])), [0, 1, 0, 2, 1])
+    with pytest.raises(ValueError, match="non-zero"):
+        offset_directions(np.array([[0, 0]]))
+    with pytest.raises(ValueError, match="integer"):
+        offset_directions(np.array([[0.5, 1.0]]))
+
+
+def test_group_changes_sum_to_the_ace_change_and_match_a_recount():
+    from paperlib.stipple.glcm import ace_change_by_group_kernel, ace_change_kernel, offset_directions
+
+    rng = np.random.default_rng(5)
+    texture, example = rng.random((14, 11)) < 0.3, rng.random((14, 11)) < 0.2
+    offsets = paper_offsets(9)
+    groups = offset_directions(offsets)
+    target = normalized_glcms(cooccurrence_counts(example, offsets))
+    totals = pair_totals(texture.shape, offsets).astype(np.float64)
+    counts = cooccurrence_counts(texture, offsets)
+    changes = np.zeros(3)
+    for y, x in [(0, 0), (5, 7), (13, 10), (7, 0)]:
+        ace_change_by_group_kernel(texture, counts, y, x, offsets, target, totals, groups, changes)
+        assert changes.sum() == pytest.approx(ace_change_kernel(texture, counts, y, x, offsets, target, totals), abs=1e-15)
+        flipped = texture.copy()
+        flipped[y, x] = ~flipped[y, x]
+        before = np.abs(normalized_glcms(counts) - target).sum(axis=(1, 2))
+        after = np.abs(normalized_glcms(cooccurrence_counts(flipped, offsets)) - target).sum(axis=(1, 2))
+        expected = [(after - before)[groups == g].sum() / len(offsets) for g in range(3)]
+        np.testing.assert_allclose(changes, expected, atol=1e-14)

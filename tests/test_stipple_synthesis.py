@@ -4,11 +4,13 @@ import numpy as np
 import pytest
 
 from paperlib.datasets import stipple_tone_texture
-from paperlib.stipple.glcm import ace, cooccurrence_counts, normalized_glcms, pair_totals, paper_offsets
+from paperlib.stipple.glcm import ace, cooccurrence_counts, normalized_glcms, offset_directions, pair_totals, paper_offsets
+from paperlib.stipple.spacing import compare_spacing
 from paperlib.stipple.synthesis import (
     StippleGeometry,
     _spin_flip_pass,
     _stipple_radius,
+    paper_radius_quantiles,
     stipple_geometry,
     synthesize_distribution,
 )
@@ -65,43 +67,57 @@ def test_stipple_geometry_rejects_bad_input(bad):
         stipple_geometry(np.eye(5, dtype=bool), marks="grey")
 
 
-def test_stipple_radius_stays_in_the_papers_ranges():
-    radius = _stipple_radius.py_func
+def test_paper_radius_quantiles_follow_the_papers_rule():
+    """3.4.2: D = O_min + random(0, O_avg - O_min) w.p. 0.1, O_avg w.p. 0.8, O_max + random(O_avg - O_max, 0)."""
     o_min, o_avg, o_max = 4.0, 10.0, 25.0
-    assert radius(0.5, 0.7, o_min, o_avg, o_max) == o_avg  # probability 0.8, R = 0
-    assert o_min <= radius(0.05, 0.7, o_min, o_avg, o_max) < o_avg  # O_min + random(0, O_avg - O_min)
-    assert o_avg < radius(0.15, 0.7, o_min, o_avg, o_max) <= o_max  # O_max + random(O_avg - O_max, 0)
-    assert radius(0.05, 0.0, o_min, o_avg, o_max) == o_min
-    assert radius(0.15, 0.0, o_min, o_avg, o_max) == o_max
+    quantiles = paper_radius_quantiles(StippleGeometry(30.0, o_min, o_avg, o_max))
+    radius = _stipple_radius.py_func
+    draws = np.array([radius(u, quantiles) for u in np.random.default_rng(0).random(20000)])
+    assert draws.min() >= o_min and draws.max() <= o_max
+    assert np.mean(draws == o_avg) == pytest.approx(0.8, abs=0.01)
+    low, high = draws[draws < o_avg], draws[draws > o_avg]
+    assert len(low) / len(draws) == pytest.approx(0.1, abs=0.01) and len(high) / len(draws) == pytest.approx(0.1, abs=0.01)
+    # R is uniform: the halves of each range are equally likely
+    assert np.mean(low < (o_min + o_avg) / 2) == pytest.approx(0.5, abs=0.05)
+    assert np.mean(high < (o_avg + o_max) / 2) == pytest.approx(0.5, abs=0.05)
+    assert radius(0.0, quantiles) == o_min and radius(0.999999, quantiles) == pytest.approx(o_max, abs=1e-3)
 
 
 # --------------------------------------------------------------------------------------------
 # the kernel against a pure Python pass
 
 
-def reference_pass(texture, offsets, target, order, choices, spreads, radii, fixed_radius, regions):
-    """Section 3.4.1-3.4.2 spelled out: full ACE recomputation for every candidate flip."""
+def direction_errors(target, texture, offsets, groups):
+    """The ACE share of every group of offsets, recomputed from scratch."""
+    glcm = normalized_glcms(cooccurrence_counts(texture, offsets))
+    share = np.abs(glcm - target).sum(axis=(1, 2)) / len(offsets)
+    return np.array([share[groups == g].sum() for g in range(groups.max() + 1)])
+
+
+def reference_pass(texture, offsets, target, groups, order, uniforms, quantiles, fixed_radius, regions):
+    """Section 3.4.1-3.4.2 spelled out: full error recomputation for every candidate flip; a flip is
+    kept when the error of every group drops (one group: the ACE of eq. 5)."""
     texture, regions = texture.copy(), regions.copy()
     rows, cols = np.indices(texture.shape)
 
-    def disc(y, x, radius):
-        return (rows - y) ** 2 + (cols - x) ** 2 <= radius**2
+    def disc(y, x, radius):  # open disc: a stipple may sit at exactly D
+        return (rows - y) ** 2 + (cols - x) ** 2 < radius**2
 
     considered = np.zeros(texture.shape, dtype=bool)
     for y, x in zip(*np.nonzero(texture)):  # the existing stipples' regions, without the stipples
         considered |= disc(y, x, fixed_radius if fixed_radius >= 0 else regions[y, x])
     considered &= ~texture
-    current = ace(target, normalized_glcms(cooccurrence_counts(texture, offsets)))
+    current = direction_errors(target, texture, offsets, groups)
     for t, flat in enumerate(order):
         y, x = divmod(int(flat), texture.shape[1])
         if considered[y, x]:
             continue
         considered[y, x] = True
         texture[y, x] = ~texture[y, x]
-        candidate = ace(target, normalized_glcms(cooccurrence_counts(texture, offsets)))
-        if candidate < current - 1e-12:
+        candidate = direction_errors(target, texture, offsets, groups)
+        if np.all(candidate < current - 1e-12):
             current = candidate
-            radius = fixed_radius if fixed_radius >= 0 else _stipple_radius.py_func(choices[t], spreads[t], *radii)
+            radius = fixed_radius if fixed_radius >= 0 else _stipple_radius.py_func(uniforms[t], quantiles)
             regions[y, x] = radius if texture[y, x] else 0.0
             considered |= disc(y, x, radius)
         else:
@@ -109,25 +125,29 @@ def reference_pass(texture, offsets, target, order, choices, spreads, radii, fix
     return texture, regions
 
 
+@pytest.mark.parametrize("every_direction", [False, True])
 @pytest.mark.parametrize("fixed_radius", [-1.0, 0.0, 1.5])
-def test_spin_flip_pass_matches_python_reference(fixed_radius):
+def test_spin_flip_pass_matches_python_reference(fixed_radius, every_direction):
     example = np.random.default_rng(0).random((12, 12)) < 0.2
     seed = np.random.default_rng(1).random((12, 12)) < 0.05
     offsets = paper_offsets(5)
+    groups = offset_directions(offsets) if every_direction else np.zeros(len(offsets), dtype=np.int64)
     target = normalized_glcms(cooccurrence_counts(example, offsets))
     rng = np.random.default_rng(2)
     order = rng.permutation(seed.size).astype(np.int64)
-    choices, spreads = rng.random(seed.size), rng.random(seed.size)
-    radii = np.array([1.0, 2.0, 3.5])
+    uniforms = rng.random(seed.size)
+    quantiles = np.array([1.0, 1.5, 2.0, 2.0, 3.5])
     regions = np.where(seed, 2.5, 0.0)
-    expected, expected_regions = reference_pass(seed, offsets, target, order, choices, spreads, radii, fixed_radius,
-                                                regions)
+    expected, expected_regions = reference_pass(seed, offsets, target, groups, order, uniforms, quantiles,
+                                                fixed_radius, regions)
 
     texture, counts = seed.copy(), cooccurrence_counts(seed, offsets)
     totals = pair_totals(seed.shape, offsets).astype(np.float64)
     considered = np.zeros(seed.shape, dtype=bool)
+    changes = np.zeros(groups.max() + 1)
     attempts, accepted = _spin_flip_pass(
-        texture, counts, offsets, target, totals, order, choices, spreads, radii, fixed_radius, considered, regions
+        texture, counts, offsets, target, totals, groups, changes, order, uniforms, quantiles, fixed_radius,
+        considered, regions,
     )
     np.testing.assert_array_equal(texture, expected)
     np.testing.assert_array_equal(regions, expected_regions)
@@ -135,6 +155,33 @@ def test_spin_flip_pass_matches_python_reference(fixed_radius):
     assert accepted == np.count_nonzero(texture != seed) and accepted >= 1
     assert attempts == seed.size if fixed_radius == 0 else attempts <= seed.size
     assert considered.all()
+
+
+def test_matched_spacing_reaches_the_examples_distances():
+    """The paper's radius rule leaves the nearest-neighbour distances of a light tone far from the
+    example's (most end up just above O_avg); the matched radii come much closer, and both are far
+    closer than complete spatial randomness."""
+    from paperlib.stipple.extraction import extract_distribution
+
+    distribution = extract_distribution(stipple_tone_texture(0.1, 128, rng=6, mark_radius=2.0)).distribution
+    matched = synthesize_distribution(distribution, rng=2)
+    paper = synthesize_distribution(distribution, spacing="paper", rng=2)
+    csr = np.zeros(distribution.size, dtype=bool)
+    csr[np.random.default_rng(3).choice(csr.size, int(distribution.sum()), replace=False)] = True
+    ks = {name: compare_spacing(distribution, texture).nn_ks
+          for name, texture in (("matched", matched.texture), ("paper", paper.texture), ("csr", csr.reshape(128, 128)))}
+    assert ks["matched"] < 0.5 * ks["paper"] and ks["paper"] < 0.6 * ks["csr"]
+    assert matched.spacing == "matched" and matched.trials > 1 and len(matched.radius_quantiles) == 21
+    assert paper.spacing == "paper" and paper.trials == 1 and len(paper.radius_quantiles) == 11
+
+
+def test_every_direction_acceptance_keeps_flips_that_lower_each_direction():
+    from paperlib.stipple.extraction import extract_distribution
+
+    distribution = extract_distribution(stipple_tone_texture(0.2, 48, rng=1)).distribution
+    outcome = synthesize_distribution(distribution, acceptance="every_direction", rng=4)
+    assert outcome.acceptance == "every_direction"
+    assert outcome.final_ace < 0.3 * outcome.ace_history[0]
 
 
 def test_synthesis_keeps_the_examples_hard_core():
@@ -212,8 +259,9 @@ def test_blank_example_and_explicit_seed_and_size():
     assert grown.final_ace < grown.ace_history[0]
     resized = synthesize_distribution(example, size=(40, 48), iterations=2, rng=0)
     assert resized.texture.shape == (40, 48) and len(resized.offsets) == 3 * 31
-    custom = synthesize_distribution(example, iterations=2, geometry=StippleGeometry(1.0, 2.0, 3.0, 6.0), rng=0)
-    assert custom.geometry.o_avg == 3.0
+    custom = synthesize_distribution(example, iterations=2, geometry=StippleGeometry(1.0, 2.0, 3.0, 6.0),
+                                     spacing="paper", rng=0)
+    assert custom.geometry.o_avg == 3.0 and custom.radius_quantiles[5] == 3.0
 
 
 @pytest.mark.parametrize(
@@ -233,8 +281,11 @@ def test_blank_example_and_explicit_seed_and_size():
         ({"seed_texture": np.zeros((8, 8)), "size": 9}, "seed_texture|dtype"),
         ({"seed_texture": np.zeros((8, 8), bool), "size": 9}, "seed_texture"),
         ({"geometry": "yes"}, "geometry"),
-        ({"geometry": StippleGeometry(1.0, 5.0, 3.0, 4.0)}, "O_min <= O_avg"),
-        ({"geometry": StippleGeometry(1.0, float("nan"), 3.0, 4.0)}, "finite"),
+        ({"geometry": StippleGeometry(1.0, 5.0, 3.0, 4.0), "spacing": "paper"}, "O_min <= O_avg"),
+        ({"geometry": StippleGeometry(1.0, float("nan"), 3.0, 4.0), "spacing": "paper"}, "finite"),
+        ({"geometry": StippleGeometry(1.0, 2.0, 3.0, 4.0)}, "spacing='paper'"),
+        ({"spacing": "even"}, "spacing"),
+        ({"acceptance": "all"}, "acceptance"),
     ],
 )
 def test_bad_input_raises_value_error(kwargs, match):
