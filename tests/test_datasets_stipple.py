@@ -125,3 +125,32 @@ def test_mark_rasterisation_equals_scikit_image():
             np.testing.assert_array_equal(a, b)
         for a, b in zip(disk(center, r_radius, shape=shape), _disk(center, r_radius, shape)):
             np.testing.assert_array_equal(a, b)
+
+
+def test_andrews_like_tones_follow_the_papers_geometry_and_levels():
+    """Section 3.5: O_min 14.3, O_avg 29.7, O_max 40.8, S_avg 33.7 px on a 256 x 256 tone; section 3.2:
+    tones 1-4 light, 5-6 merged, 7-8 dark."""
+    from paperlib.datasets.stipple import andrews_like_tones
+    from paperlib.stipple import classify_level, extract_distribution
+    from paperlib.stipple.synthesis import stipple_geometry
+
+    textures, truths = andrews_like_tones(256, rng=0, return_truth=True)
+    assert [truth["regime"] for truth in truths] == ["light"] * 4 + ["merged"] * 2 + ["dark"] * 2
+    assert [classify_level(texture) for texture in textures] == ["light"] * 4 + ["merged"] * 2 + ["dark"] * 2
+    assert np.all(np.diff([texture.mean() for texture in textures]) > 0)
+    distribution = extract_distribution(textures[0], "light")
+    geometry = stipple_geometry(distribution.distribution)
+    measured = [distribution.s_avg, geometry.o_min, geometry.o_avg, geometry.o_max]
+    np.testing.assert_allclose(measured, [33.7, 14.3, 29.7, 40.8], rtol=0.25)
+    again = andrews_like_tones(256, rng=0)
+    assert all(np.array_equal(a, b) for a, b in zip(again, textures))
+
+
+def test_hard_core_pair_and_dark_min_are_checked():
+    image, truth = stipple_tone_texture(0.05, 64, rng=1, hard_core=(0.3, 0.8), return_truth=True)
+    assert truth["regime"] == "light" and truth["min_distance"] > 0
+    for kwargs, match in [({"hard_core": 0.9}, "hard_core"), ({"hard_core": (0.8, 0.3)}, "hard_core"),
+                          ({"hard_core": (0.1, 0.2, 0.3)}, "hard_core"), ({"dark_min": 0.2}, "dark_min"),
+                          ({"dark_min": 1.0}, "dark_min")]:
+        with pytest.raises(ValueError, match=match):
+            stipple_tone_texture(0.3, 32, rng=0, **kwargs)

