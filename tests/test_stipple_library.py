@@ -79,6 +79,16 @@ def test_render_uses_the_library_and_is_reproducible(library):
     assert first.image[:, :24].mean() > first.image[:, -24:].mean() + 0.3
 
 
+def test_render_frames_the_tones_with_pure_white_and_black(library):
+    """Section 3.2: tone 0 is pure white, the darkest tone pure black; the library's tones lie between."""
+    np.testing.assert_array_equal(library.level_grays, np.concatenate([[1.0], library.tone_grays, [0.0]]))
+    white, black = library.render(np.ones((48, 48)), rng=1), library.render(np.zeros((48, 48)), rng=1)
+    assert not white.image.any() and black.image.all()
+    old_white = library.render(np.ones((48, 48)), pure_levels=False, rng=1)
+    assert old_white.image.mean() > 0.03  # clamped to the lightest tone (gray 0.92 here)
+    assert np.all(old_white.tone_index == 0) and np.all(white.tone_index == 0)  # tone 1 then, pure white now
+
+
 @pytest.mark.parametrize(
     "arguments, message",
     [
@@ -103,3 +113,13 @@ def test_non_bitonal_or_empty_textures_are_rejected(examples):
         learn_stipple_library([gray, examples[1]], size=32, iterations=1)
     with pytest.raises(ValueError, match="empty|white|ink"):
         learn_stipple_library([np.zeros((64, 64), bool), examples[1]], size=32, iterations=1)
+
+
+def test_a_tone_map_without_a_light_level_still_reaches_white_and_black(examples):
+    """Merged and dark tones only (no light level, no separate black dots): the pure levels still
+    frame them, so white stays paper and black is solid ink (section 3.2)."""
+    learnt = learn_stipple_library(examples[1:], size=48, iterations=3, rng=0)
+    assert learnt.levels == ["merged", "dark"]
+    ramp = np.tile(np.linspace(0.0, 1.0, 200), (50, 1))
+    rendered = learnt.render(ramp, rng=0).image
+    assert rendered[:, :5].mean() > 0.95 and rendered[:, -5:].mean() < 0.05  # 1 - g: 0.99 and 0.01

@@ -10,7 +10,10 @@ from skimage.measure import label
 from paperlib.datasets.stipple import stipple_tone_texture
 from paperlib.stipple.extraction import Mark, extract_distribution, extract_marks
 from paperlib.stipple.rendering import (
+    PURE_BLACK,
+    PURE_WHITE,
     distribution_image,
+    level_grays,
     place_marks,
     remove_small_chunks,
     render_stippling,
@@ -72,25 +75,94 @@ def test_render_tone_white_marks_cut_paper():
 
 def test_selection_halfway_picks_each_about_half():
     grays = np.array([0.2, 0.8, 0.5])
-    picked = select_tones(np.full((200, 200), 0.35), grays, rng=3)
+    picked = select_tones(np.full((200, 200), 0.35), grays, rng=3, pure_levels=False)
     assert set(np.unique(picked)) == {0, 2}
     share = np.mean(picked == 2)
     assert abs(share - 0.5) < 4 * 0.5 / 200  # four standard errors of 40000 draws
 
 
 def test_selection_probability_is_linear():
-    picked = select_tones(np.full((200, 200), 0.65), [0.5, 0.8], rng=4)
+    picked = select_tones(np.full((200, 200), 0.65), [0.5, 0.8], rng=4, pure_levels=False)
     assert abs(np.mean(picked == 1) - 0.5) < 0.01
-    picked = select_tones(np.full((200, 200), 0.56), [0.5, 0.8], rng=4)
+    picked = select_tones(np.full((200, 200), 0.56), [0.5, 0.8], rng=4, pure_levels=False)
     assert abs(np.mean(picked == 1) - 0.2) < 0.01
+    # with the pure levels the same tones are levels 1 and 2: the same draws, shifted by one
+    shifted = select_tones(np.full((200, 200), 0.56), [0.5, 0.8], rng=4)
+    np.testing.assert_array_equal(shifted, picked + 1)
 
 
-def test_selection_exact_gray_and_outside_range():
+def test_selection_exact_gray_and_outside_range_without_pure_levels():
     grays = [0.9, 0.1, 0.5]
     for tone, gray in enumerate(grays):
-        assert np.all(select_tones(np.full((50, 50), gray), grays, rng=1) == tone)
-    assert np.all(select_tones(np.full((5, 5), 1.0), grays, rng=1) == 0)
-    assert np.all(select_tones(np.zeros((5, 5)), grays, rng=1) == 1)
+        assert np.all(select_tones(np.full((50, 50), gray), grays, rng=1, pure_levels=False) == tone)
+    assert np.all(select_tones(np.full((5, 5), 1.0), grays, rng=1, pure_levels=False) == 0)
+    assert np.all(select_tones(np.zeros((5, 5)), grays, rng=1, pure_levels=False) == 1)
+
+
+# ---------------------------------------------------------------- pure white and black (3.2)
+
+
+def test_level_grays_frame_the_tones_with_pure_white_and_black():
+    np.testing.assert_array_equal(level_grays([0.9, 0.1, 0.5]), [PURE_WHITE, 0.9, 0.1, 0.5, PURE_BLACK])
+    assert (PURE_WHITE, PURE_BLACK) == (1.0, 0.0)
+    np.testing.assert_array_equal(level_grays([0.9, 0.1], pure_levels=False), [0.9, 0.1])
+    # 8 stipple tones give the paper's 10 levels, tone 0 white .. tone 9 black (Figure 3)
+    assert level_grays(np.linspace(0.9, 0.1, 8)).size == 10
+
+
+def test_selection_with_pure_levels_covers_every_gray():
+    grays = [0.9, 0.1, 0.5]  # levels: 0 white, 1..3 these tones, 4 black
+    for tone, gray in enumerate(grays):
+        assert np.all(select_tones(np.full((50, 50), gray), grays, rng=1) == tone + 1)
+    assert np.all(select_tones(np.full((50, 50), 1.0), grays, rng=1) == 0)
+    assert np.all(select_tones(np.zeros((50, 50)), grays, rng=1) == 4)
+    # between the lightest tone (0.9) and white: p_r of white = (0.96 - 0.9) / 0.1 = 0.6
+    picked = select_tones(np.full((200, 200), 0.96), grays, rng=2)
+    assert set(np.unique(picked)) == {0, 1}
+    assert abs(np.mean(picked == 0) - 0.6) < 4 * np.sqrt(0.24 / picked.size)
+    # between black and the darkest tone (0.1): p of black = 1 - 0.03 / 0.1 = 0.7
+    picked = select_tones(np.full((200, 200), 0.03), grays, rng=2)
+    assert set(np.unique(picked)) == {2, 4}
+    assert abs(np.mean(picked == 4) - 0.7) < 4 * np.sqrt(0.21 / picked.size)
+
+
+def test_white_stays_paper_and_black_is_solid_ink(tone_set, grays):
+    white = render_stippling(np.ones((96, 96)), *tone_set, tone_grays=grays, rng=3)
+    black = render_stippling(np.zeros((96, 96)), *tone_set, tone_grays=grays, rng=3)
+    assert not white.image.any() and not white.distribution.any() and np.all(white.tone_index == 0)
+    assert black.image.all() and not black.distribution.any() and np.all(black.tone_index == len(grays) + 1)
+    np.testing.assert_array_equal(white.level_grays, level_grays(grays))
+    np.testing.assert_array_equal(white.tone_grays, grays)
+    assert white.pure_levels
+    # the old rendering, still reachable: white takes the lightest tone, black the darkest
+    old_white = render_stippling(np.ones((96, 96)), *tone_set, tone_grays=grays, rng=3, pure_levels=False)
+    old_black = render_stippling(np.zeros((96, 96)), *tone_set, tone_grays=grays, rng=3, pure_levels=False)
+    assert abs(old_white.image.mean() - (1 - grays.max())) < 0.03
+    assert abs(old_black.image.mean() - (1 - grays.min())) < 0.03
+    assert not old_white.pure_levels and old_white.level_grays.size == len(grays)
+
+
+def test_pure_levels_change_nothing_inside_the_tone_range(tone_set, grays):
+    """Inside the tones' range no pixel selects a pure level: the same image bit for bit."""
+    image = np.tile(np.linspace(grays.min(), grays.max(), 160), (96, 1))
+    new = render_stippling(image, *tone_set, tone_grays=grays, rng=5)
+    old = render_stippling(image, *tone_set, tone_grays=grays, rng=5, pure_levels=False)
+    np.testing.assert_array_equal(new.image, old.image)
+    np.testing.assert_array_equal(new.tone_index, old.tone_index + 1)
+
+
+def test_mixtures_with_pure_levels_keep_the_expected_ink(tone_set, grays):
+    """Between white and the lightest tone, and between the darkest tone and black, Figure 10's
+    rule gives each pixel an expected ink of 1 - g; the marks' density scales with the tone's
+    share there, so the rendered ink follows (measured error 0.0004 and 0.0013)."""
+    for low, high in ((grays.max(), 1.0), (0.0, grays.min())):
+        image = np.tile(np.linspace(low, high, 256), (256, 1))
+        rendered = render_stippling(image, *tone_set, tone_grays=grays, rng=6).image
+        old = render_stippling(image, *tone_set, tone_grays=grays, rng=6, pure_levels=False).image
+        expected = 1.0 - image.mean()
+        assert abs(rendered.mean() - expected) < 0.02
+        # clamped to one tone, the old rendering is off by half the interval (0.026 and 0.079)
+        assert abs(old.mean() - expected) > 0.4 * (high - low)
 
 
 # ---------------------------------------------------------------- step 3: distribution image
@@ -101,7 +173,7 @@ def test_distribution_image_copies_rotated_tiles():
     tiles = [rng.random((8, 8)) < 0.3 for _ in range(2)]
     index = np.zeros((20, 28), dtype=int)
     index[:, 14:] = 1
-    out = distribution_image(index, tiles, rng=5)
+    out = distribution_image(index, tiles, rng=5, pure_levels=False)
     rotations = [[np.rot90(tile, k) for k in range(4)] for tile in tiles]
     for tone, c0 in ((0, 0), (1, 16)):  # tone 1 occupies columns >= 14; its full cells start at 16
         block = out[0:8, c0 : c0 + 8]
@@ -112,7 +184,7 @@ def test_distribution_image_copies_rotated_tiles():
 def test_distribution_image_uses_several_rotations():
     tile = np.zeros((8, 8), dtype=bool)
     tile[0, 1] = True  # asymmetric: its four rotations differ
-    out = distribution_image(np.zeros((80, 80), dtype=int), [tile, tile], rng=2)
+    out = distribution_image(np.zeros((80, 80), dtype=int), [tile, tile], rng=2, pure_levels=False)
     blocks = {out[r : r + 8, c : c + 8].tobytes() for r in range(0, 80, 8) for c in range(0, 80, 8)}
     assert len(blocks) == 4
 
@@ -120,12 +192,22 @@ def test_distribution_image_uses_several_rotations():
 # ---------------------------------------------------------------- step 4: mark placement
 
 
+def test_place_marks_pure_levels_place_no_marks():
+    centres = np.ones((12, 12), dtype=bool)  # centres everywhere, even on the pure levels
+    index = np.zeros((12, 12), dtype=int)    # left third pure white, middle a dark tone, right pure black
+    index[:, 4:8] = 2
+    index[:, 8:] = 3
+    out = place_marks(centres, index, [[DOT], [HOLE]], rng=0)
+    assert not out[:, :3].any()   # paper: no black mark centred on pure white (marks spill 1 px)
+    assert out[:, 9:].all()       # solid ink: no white mark centred on pure black
+
+
 def test_place_marks_black_then_white():
     centres = np.zeros((10, 10), dtype=bool)
     centres[5, 3] = centres[5, 5] = True
     index = np.zeros((10, 10), dtype=int)
     index[:, 5:] = 1  # right half dark: starts as ink, white marks
-    out = place_marks(centres, index, [[DOT], [HOLE]], rng=0)
+    out = place_marks(centres, index, [[DOT], [HOLE]], rng=0, pure_levels=False)
     assert out[4:7, 2:4].all()  # black mark at (5, 3) ...
     assert not out[4:7, 4:7].any()  # ... partly cut by the later white mark at (5, 5)
     assert out[:, 7:].all() and not out[:, :2].any()
@@ -135,7 +217,7 @@ def test_place_marks_draws_from_library():
     small = Mark(mask=np.ones((1, 1), dtype=bool), offset=(0, 0), white=False)
     centres = np.zeros((60, 60), dtype=bool)
     centres[5::10, 5::10] = True
-    out = place_marks(centres, np.zeros((60, 60), dtype=int), [[DOT, small], [HOLE]], rng=1)
+    out = place_marks(centres, np.zeros((60, 60), dtype=int), [[DOT, small], [HOLE]], rng=1, pure_levels=False)
     areas = np.bincount(label(out, connectivity=2).ravel())[1:]
     assert set(areas) == {1, 9}
 
@@ -225,7 +307,18 @@ def test_bad_input(tone_set):
     with pytest.raises(ValueError, match="empty"):
         tone_gray_levels(tiles[:2], [[], [DOT]])
     with pytest.raises(ValueError, match="tone_index"):
-        distribution_image(np.full((4, 4), 7), tiles)
+        distribution_image(np.full((4, 4), 8), tiles)  # 6 tones + white (0) + black (7)
+    with pytest.raises(ValueError, match="tone_index"):
+        distribution_image(np.full((4, 4), 6), tiles, pure_levels=False)
+    with pytest.raises(ValueError, match="pure white or black"):
+        select_tones(image, [1.0, 0.5])
+    with pytest.raises(ValueError, match="pure white or black"):
+        render_stippling(image, tiles[:2], libraries[:2], tone_grays=[0.5, 0.0])
+    with pytest.raises(ValueError, match="pure_levels"):
+        render_stippling(image, tiles, libraries, pure_levels="yes")
+    # a tone whose texture holds no stipple at all is pure white, not a stipple tone
+    with pytest.raises(ValueError, match="pure white or black"):
+        render_stippling(image, [np.zeros_like(tiles[0]), tiles[1]], libraries[:2])
     with pytest.raises(ValueError, match="one shape"):
         place_marks(np.zeros((4, 4), dtype=bool), np.zeros((5, 5), dtype=int), [[DOT], [HOLE]])
     with pytest.raises(ValueError, match="min_size"):

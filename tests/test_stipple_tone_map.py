@@ -134,6 +134,29 @@ def test_largest_rectangle_simple():
     assert largest_rectangle(np.zeros((3, 3), dtype=bool)) is None
 
 
+def test_pure_white_and_black_are_levels_not_textures(sheet, tone_map):
+    """Section 3.2: "Tone 0 and 9 are pure white and black respectively": blank paper and solid
+    ink beside the sheet are those two levels, not stipple tones with a texture."""
+    image, _ = sheet
+    framed = np.hstack([np.zeros((256, 256), dtype=bool), image, np.ones((256, 256), dtype=bool)])
+    with_pure = extract_tone_map(framed, block_size=BLOCK)
+    assert len(with_pure) == 8
+    np.testing.assert_allclose(with_pure.gray_levels, tone_map.gray_levels)
+    assert all(texture.any() and not texture.all() for texture in with_pure.textures)
+    levels = with_pure.level_grays
+    assert levels.size == 10 and levels[0] == 1.0 and levels[-1] == 0.0  # Figure 3: tones 0..9
+    np.testing.assert_array_equal(levels[1:-1], with_pure.gray_levels)
+    kept_all = extract_tone_map(framed, block_size=BLOCK, pure=0)  # the pure regions become "tones"
+    assert kept_all.gray_levels.max() == 1.0 and kept_all.gray_levels.min() == 0.0
+
+
+def test_only_pure_regions_is_a_clear_error():
+    image = np.zeros((128, 256), dtype=bool)
+    image[:, 128:] = True  # blank paper beside solid ink: tones 0 and 9, no stipple tone
+    with pytest.raises(ValueError, match="pure white or black"):
+        extract_tone_map(image, block_size=32, min_size=64)
+
+
 def test_no_region_large_enough():
     # a drawing whose tone changes every 32 px: no region holds a 64 x 64 texture
     image = np.zeros((128, 256), dtype=bool)
@@ -162,6 +185,8 @@ def test_fewer_than_two_tones():
         (np.zeros((64, 64), dtype=bool), {"t1": 0}),
         (np.zeros((64, 64), dtype=bool), {"t2": 1.5}),
         (np.zeros((64, 64), dtype=bool), {"min_size": -1}),
+        (np.zeros((64, 64), dtype=bool), {"pure": 0.5}),
+        (np.zeros((64, 64), dtype=bool), {"pure": "a"}),
     ],
 )
 def test_bad_input(image, kwargs):

@@ -53,6 +53,8 @@ def test_render_controls_rerender_at_once_without_relearning(explorer):
     ramp = explorer.rendering.image
     paper = 1.0 - ramp.mean(axis=0)
     assert np.mean(paper[-32:]) > np.mean(paper[:32]) + 0.4  # white on the right, black on the left
+    # the pure white and black tones (Kim 2009, 3.2): paper at the white end, solid ink at the black end
+    assert np.mean(paper[-3:]) > 0.9 and np.mean(paper[:3]) < 0.1
     explorer.render_size.value = 192
     assert explorer.rendering.image.shape == (96, 192)
     explorer.image_name.value = "camera"

@@ -3,7 +3,9 @@
 The paper's system (its Figure 2) runs once per artist: example textures of the tone map
 (section 3.1) -> example distribution textures and mark libraries (3.2) -> synthesized
 distribution textures (3.4) -> tone grays by pre-simulation (4.1). The result is all the
-rendering of section 4 needs. :func:`learn_stipple_library` chains those steps, and
+rendering of section 4 needs; the pure white and pure black tones that frame every tone map
+(section 3.2, "Tone 0 and 9 are pure white and black respectively") need no learning and are
+added by the rendering. :func:`learn_stipple_library` chains those steps, and
 :class:`StippleLibrary` keeps every intermediate so that notebooks can show and measure them
 (Figures 5, 7 and 8) and :meth:`StippleLibrary.render` can stipple any number of images.
 
@@ -22,7 +24,7 @@ import numpy as np
 from ..parallel import run_many, spawn_seeds
 from .extraction import DistributionResult, Mark, classify_level, extract_distribution, extract_marks
 from .glcm import check_bitonal
-from .rendering import StippleRendering, render_stippling, tone_gray_levels
+from .rendering import StippleRendering, level_grays, render_stippling, tone_gray_levels
 from .synthesis import SynthesisResult, synthesize_distribution
 from .tone_map import ToneMap
 
@@ -44,7 +46,9 @@ class StippleLibrary:
     marks : list of list of Mark
         The mark library of every tone (section 3.2, used in 4.2).
     tone_grays : ndarray of float
-        Gray of every tone in [0, 1] (1 white), pre-simulated from its tile and marks (4.1).
+        Gray of every stipple tone in [0, 1] (1 white), pre-simulated from its tile and marks
+        (4.1). The pure white and black tones of the paper's tone maps (3.2) need no texture and
+        are not listed; :attr:`level_grays` adds them, and :meth:`render` uses them.
     """
 
     examples: list
@@ -66,9 +70,21 @@ class StippleLibrary:
         """Level of every tone: ``"light"``, ``"merged"`` or ``"dark"``."""
         return [distribution.level for distribution in self.distributions]
 
-    def render(self, image, *, min_chunk: int = 1, rng=None) -> StippleRendering:
-        """Stipple a grayscale image (0 black .. 1 white) with this library (section 4)."""
-        return render_stippling(image, self.tiles, self.marks, tone_grays=self.tone_grays, min_chunk=min_chunk, rng=rng)
+    @property
+    def level_grays(self) -> np.ndarray:
+        """Grays of the rendering's levels: pure white (tone 0), the stipple tones, pure black (3.2)."""
+        return level_grays(self.tone_grays)
+
+    def render(self, image, *, min_chunk: int = 1, pure_levels: bool = True, rng=None) -> StippleRendering:
+        """Stipple a grayscale image (0 black .. 1 white) with this library (section 4).
+
+        ``pure_levels`` (default True) renders with the paper's pure white and pure black tones
+        around the library's stipple tones (section 3.2: "Tone 0 and 9 are pure white and black
+        respectively"), so white stays paper and black is solid ink; False clamps every gray to
+        the library's tones (:func:`paperlib.stipple.render_stippling`).
+        """
+        return render_stippling(image, self.tiles, self.marks, tone_grays=self.tone_grays, min_chunk=min_chunk,
+                                pure_levels=pure_levels, rng=rng)
 
 
 def _example_textures(tone_textures) -> list[np.ndarray]:

@@ -9,7 +9,9 @@ The rendering turns a grayscale image into a bitonal stipple image in five steps
 2. :func:`select_tones` picks a tone level for every pixel: a gray ``g`` between the grays
    ``g_i < g_{i+1}`` of two neighbouring levels picks level ``i + 1`` with probability
    ``p_r = (g - g_i) / (g_{i+1} - g_i)`` and level ``i`` otherwise (``p_l = 1 - p_r``, Figure
-   10). Grays outside the tone range take the nearest level.
+   10). The levels are the paper's whole tone map (section 3.2, "Tone 0 and 9 are pure white
+   and black respectively"): pure white (gray 1), the stipple tones, pure black (gray 0); see
+   *Pure levels* below.
 3. :func:`distribution_image` copies, pixel by pixel, the chosen level's distribution texture
    into the *distribution image* (Figure 9). Each level's texture is stitched into a large one
    from copies of its tile, every copy rotated at random by 0, 90, 180 or 270 degrees (4.1).
@@ -17,13 +19,34 @@ The rendering turns a grayscale image into a bitonal stipple image in five steps
    stipple pixel of the distribution image: black marks of the light and merged levels first,
    then white marks of the dark levels (4.2). The level map is ``tone_index``. The paper does
    not say what lies under the white marks; here the pixels of dark levels start as ink (the
-   dark textures are white marks on black) and all others as paper.
+   dark textures are white marks on black) and all others as paper. Pure white pixels stay
+   paper and pure black pixels ink: no mark is centred on them.
 5. :func:`remove_small_chunks` removes the stray ink and paper pixel chunks that the mixture of
    middle levels leaves (Figure 11). The paper *moves* each chunk toward its nearest stipple
    mark and gives no details; we delete the chunks (``skimage.morphology``), which removes the
    isolated pixels it shows in Figure 11 but does not add their ink to a neighbouring mark.
 
 :func:`render_stippling` runs the five steps.
+
+Pure levels
+-----------
+The paper's tone maps have ten levels (section 3.2 and Figure 3): tone 0 is pure white and tone
+9 pure black, tones 1-8 are stipple textures. Only tones 1-8 are extracted, synthesized and
+pre-simulated (sections 3.1-4.1); the two pure levels need no texture, their grays are 1 and 0
+by definition. With ``pure_levels=True`` (the default of every step) the level map counts them:
+level 0 is pure white (paper, no marks), levels ``1 .. n`` are the ``n`` stipple tones in the
+order given, level ``n + 1`` is pure black (solid ink, no white marks); :func:`level_grays` gives
+their grays ``[1, g_1, ..., g_n, 0]``. Figure 10's rule then covers every gray: a pixel lighter
+than the lightest stipple tone mixes that tone with pure white, one darker than the darkest tone
+mixes it with pure black, so a white input stays paper white and a black one solid ink, and the
+level map's expected gray equals the input everywhere. Marks are stamped around their centres,
+so the marks of a stipple tone next to pure pixels spill over them, as between any two levels;
+in a mixture with a pure level the marks' density scales with the tone's share, so the expected
+ink stays linear in the gray there (unlike a mixture of a black-mark and a white-mark level).
+``pure_levels=False`` restores the previous rendering: the level map has the ``n`` stipple tones
+only and grays outside their range take the nearest tone (a white area renders at the lightest
+tone's ink, 11-12% with the synthetic exemplars of ``paperlib.datasets.stipple_tone_sheet``, and
+a black one at the darkest tone's, about 88%).
 
 Conventions: input images and tone grays are intensities in [0, 1] (0 black, 1 white, as
 :func:`paperlib.datasets.grayscale_image`); bitonal textures and outputs are bool, ``True`` =
@@ -35,7 +58,8 @@ library does them); connected components come from scikit-image.
 References
 ----------
 Kim, S., Maciejewski, R., Isenberg, T., Andrews, W. M., Chen, W., Sousa, M. C., Ebert, D. S.
-(2009). Stippling by example. NPAR, section 4 (4.1, 4.2) and Figures 9-11.
+(2009). Stippling by example. NPAR, section 4 (4.1, 4.2) and Figures 9-11; section 3.2 and
+Figure 3 (the ten-level tone maps, tone 0 pure white and tone 9 pure black).
 """
 
 from __future__ import annotations
@@ -50,9 +74,12 @@ from .extraction import Mark
 from .glcm import check_bitonal
 
 __all__ = [
+    "PURE_BLACK",
+    "PURE_WHITE",
     "ChunkRemoval",
     "StippleRendering",
     "distribution_image",
+    "level_grays",
     "place_marks",
     "remove_small_chunks",
     "render_stippling",
@@ -64,6 +91,11 @@ __all__ = [
 
 # Pixels per band of uniforms drawn at once in select_tones (1 Mi: 8 MiB of float64).
 SELECTION_BAND_PIXELS = 1 << 20
+
+#: Gray of tone 0, pure white (section 3.2): paper, no marks.
+PURE_WHITE = 1.0
+#: Gray of the darkest tone (tone 9 of the paper's 10-level maps, section 3.2): solid ink.
+PURE_BLACK = 0.0
 
 
 # ============================================================================ results
@@ -97,13 +129,20 @@ class StippleRendering:
     image : ndarray of bool
         Final stipple image, ``True`` = ink.
     tone_index : ndarray of int
-        The level map: the tone level chosen for every pixel.
+        The level map: the level chosen for every pixel, an index into ``level_grays``. With
+        pure levels, 0 = pure white, ``1 .. n`` = the stipple tones in the order given, ``n + 1``
+        = pure black (the paper's tone 0 .. tone 9 for an 8-tone library, lightest first).
     distribution : ndarray of bool
         The distribution image of Figure 9, ``True`` = stipple centre.
     tone_grays : ndarray of float
-        Gray of every tone level in [0, 1] (1 white), given or pre-simulated.
+        Gray of every stipple tone in [0, 1] (1 white), given or pre-simulated (4.1).
     removed_ink, removed_paper : int
         Pixels changed by the small-chunk removal (0 when it is off).
+    level_grays : ndarray of float
+        Gray of every level of ``tone_index``: ``[1, *tone_grays, 0]`` with pure levels,
+        ``tone_grays`` without (:func:`level_grays`).
+    pure_levels : bool
+        Whether the level map holds the pure white and black levels (section 3.2).
     """
 
     image: np.ndarray
@@ -112,6 +151,8 @@ class StippleRendering:
     tone_grays: np.ndarray
     removed_ink: int
     removed_paper: int
+    level_grays: np.ndarray
+    pure_levels: bool
 
 
 # ============================================================================ checks
@@ -183,14 +224,65 @@ def _checked_grays(tone_grays) -> np.ndarray:
     return grays
 
 
-def _checked_tone_index(tone_index, n_tones: int) -> np.ndarray:
-    """A 2-D integer level map whose values are tone numbers."""
+def _checked_pure_levels(pure_levels) -> bool:
+    if not isinstance(pure_levels, (bool, np.bool_)):
+        raise ValueError(f"pure_levels must be True or False, got {pure_levels!r}")
+    return bool(pure_levels)
+
+
+def _checked_tone_index(tone_index, n_tones: int, pure_levels: bool = False) -> np.ndarray:
+    """A 2-D integer level map whose values are level numbers (``n_tones + 2`` levels with pure levels)."""
     index = np.asarray(tone_index)
     if index.ndim != 2 or index.size == 0 or not np.issubdtype(index.dtype, np.integer):
         raise ValueError(f"tone_index must be a non-empty 2-D integer array, got shape {index.shape}, dtype {index.dtype}")
-    if index.min() < 0 or index.max() >= n_tones:
-        raise ValueError(f"tone_index values must lie in [0, {n_tones - 1}]")
+    n_levels = n_tones + 2 if pure_levels else n_tones
+    if index.min() < 0 or index.max() >= n_levels:
+        counted = (f"{n_tones} stipple tones between pure white (0) and pure black ({n_levels - 1})" if pure_levels
+                   else f"{n_tones} tones, no pure levels")
+        raise ValueError(f"tone_index values must lie in [0, {n_levels - 1}] ({counted})")
     return index
+
+
+def level_grays(tone_grays, *, pure_levels: bool = True) -> np.ndarray:
+    """Grays of the levels of the level map: the stipple tones, between pure white and black.
+
+    Parameters
+    ----------
+    tone_grays : array_like of float, shape (n_tones,)
+        Distinct grays of at least two stipple tones in [0, 1] (1 white), any order, e.g.
+        :func:`tone_gray_levels`. With ``pure_levels`` they must lie strictly inside (0, 1): a
+        tone of gray 1 would hold no ink and one of gray 0 no paper, which are the pure levels.
+    pure_levels : bool, optional
+        Add the paper's pure white (tone 0) and pure black (tone 9) levels (default True).
+
+    Returns
+    -------
+    ndarray of float
+        ``[1, *tone_grays, 0]`` with ``pure_levels`` (level 0 pure white, level ``n + 1`` pure
+        black), else ``tone_grays``.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two, repeated, non-finite or out-of-range grays, or (with ``pure_levels``) a
+        tone gray of exactly 0 or 1.
+
+    References
+    ----------
+    Kim et al. 2009, section 3.2 ("Tone 0 and 9 are pure white and black respectively") and
+    Figure 3 (the 10-level tone maps).
+    """
+    grays = _checked_grays(tone_grays)
+    if not _checked_pure_levels(pure_levels):
+        return grays
+    pure = grays[(grays >= PURE_WHITE) | (grays <= PURE_BLACK)]
+    if pure.size:
+        raise ValueError(
+            f"tone grays {pure.tolist()} are pure white or black: with pure_levels=True tone 0 (gray 1) and the "
+            "darkest tone (gray 0) are added to the stipple tones (section 3.2), whose grays must therefore hold "
+            "ink and paper, strictly between 0 and 1; drop that tone or pass pure_levels=False"
+        )
+    return np.concatenate([[PURE_WHITE], grays, [PURE_BLACK]])
 
 
 # ============================================================================ mark stamping
@@ -270,7 +362,9 @@ def tone_gray_levels(distribution_textures, marks_per_tone, *, repeats: int = 1,
 
     Each tone's distribution tile is tiled 3 x 3 (periodically, as tiles are stitched in the
     rendering), rendered with :func:`render_tone`, and the paper fraction of the central tile is
-    its gray; ``repeats`` renderings with new random marks are averaged.
+    its gray; ``repeats`` renderings with new random marks are averaged. Only the stipple tones
+    are pre-simulated: the pure white and black levels of section 3.2 have grays 1 and 0 by
+    definition (:func:`level_grays`).
 
     Parameters
     ----------
@@ -316,39 +410,53 @@ def tone_gray_levels(distribution_textures, marks_per_tone, *, repeats: int = 1,
     return grays
 
 
-def select_tones(image, tone_grays, rng=None) -> np.ndarray:
+def select_tones(image, tone_grays, rng=None, *, pure_levels: bool = True) -> np.ndarray:
     """Probability-based tone level selection of every pixel (step 2, Figure 10).
 
-    With the tone grays sorted, ``g_i <= g < g_{i+1}``, a pixel of gray ``g`` takes level
+    With the level grays sorted, ``g_i <= g < g_{i+1}``, a pixel of gray ``g`` takes level
     ``i + 1`` with probability ``p_r = (g - g_i) / (g_{i+1} - g_i)`` and level ``i`` with
-    ``p_l = 1 - p_r``, so the expected gray equals ``g`` and a gray equal to a tone's picks that
-    tone only. Grays outside the tone range take the nearest (lightest or darkest) level.
+    ``p_l = 1 - p_r``, so the expected gray equals ``g`` and a gray equal to a level's picks that
+    level only.
+
+    With ``pure_levels`` (default) the levels are pure white (gray 1), the stipple tones and pure
+    black (gray 0) (:func:`level_grays`): they span [0, 1], so every gray is mixed from its two
+    neighbouring levels and the expected gray of the level map equals the input everywhere; a
+    gray lighter than the lightest tone mixes it with pure white, one darker than the darkest
+    tone mixes it with pure black. Without them, grays outside the tones' range take the nearest
+    (lightest or darkest) tone.
 
     Parameters
     ----------
     image : array_like of float, 2-D
         Input intensities in [0, 1] (0 black, 1 white).
     tone_grays : array_like of float, shape (n_tones,)
-        Distinct grays of the tone levels in [0, 1], any order (see :func:`tone_gray_levels`).
+        Distinct grays of the stipple tones in [0, 1] (strictly inside with ``pure_levels``), any
+        order (see :func:`tone_gray_levels`).
     rng : None, int or numpy.random.Generator, optional
         Random source; a seed fixes the output bit for bit.
+    pure_levels : bool, optional
+        Add the pure white and black levels (section 3.2); default True.
 
     Returns
     -------
     ndarray of int64, shape of ``image``
-        The level map: index into ``tone_grays`` of every pixel's level.
+        The level map: index into ``level_grays(tone_grays, pure_levels=pure_levels)`` of every
+        pixel's level: with pure levels 0 = pure white, ``k + 1`` = ``tone_grays[k]``,
+        ``n_tones + 1`` = pure black; without, ``k`` = ``tone_grays[k]``.
 
     Raises
     ------
     ValueError
-        Non-float or out-of-range image, fewer than two or repeated tone grays.
+        Non-float or out-of-range image, fewer than two or repeated tone grays, a tone gray of
+        0 or 1 with ``pure_levels``.
 
     References
     ----------
-    Kim et al. 2009, section 4.1 and Figure 10 (probabilities ``p_l`` and ``p_r``).
+    Kim et al. 2009, section 4.1 and Figure 10 (probabilities ``p_l`` and ``p_r``); section 3.2
+    (tones 0 and 9 pure white and black).
     """
     gray = _checked_image(image)
-    grays = _checked_grays(tone_grays)
+    grays = level_grays(tone_grays, pure_levels=pure_levels)
     rng = np.random.default_rng(rng)
     order = np.argsort(grays)
     tone_index = np.empty(gray.shape, dtype=np.int64)
@@ -375,22 +483,24 @@ def _select_kernel(gray, ordered, order, uniforms, out):
             out[r, c] = order[left + 1] if uniforms[r, c] < p_right else order[left]
 
 
-def distribution_image(tone_index, distribution_textures, rng=None) -> np.ndarray:
+def distribution_image(tone_index, distribution_textures, rng=None, *, pure_levels: bool = True) -> np.ndarray:
     """The distribution image of Figure 9 (step 3).
 
     Every tone's tile is stitched into a texture as large as ``tone_index``, each copy of the
     tile rotated at random by a multiple of 90 degrees (independently per tone and per copy,
     all rotations drawn before any is used); each pixel then copies the pixel of its own
-    level's large texture.
+    level's large texture. Pure levels have no texture: their pixels hold no stipple centre.
 
     Parameters
     ----------
     tone_index : array_like of int, 2-D
-        The level map (:func:`select_tones`).
+        The level map (:func:`select_tones`, same ``pure_levels``).
     distribution_textures : sequence of array_like
-        One bitonal, square distribution tile per tone level, one shape for all.
+        One bitonal, square distribution tile per stipple tone, one shape for all.
     rng : None, int or numpy.random.Generator, optional
         Random source of the rotations.
+    pure_levels : bool, optional
+        Whether ``tone_index`` counts the pure levels (0 white, ``n + 1`` black); default True.
 
     Returns
     -------
@@ -400,21 +510,28 @@ def distribution_image(tone_index, distribution_textures, rng=None) -> np.ndarra
     Raises
     ------
     ValueError
-        Fewer than two tones, non-bitonal or mis-shaped tiles, tone numbers out of range.
+        Fewer than two tones, non-bitonal or mis-shaped tiles, level numbers out of range.
 
     References
     ----------
     Kim et al. 2009, section 4.1 ("applying a random rotation to each small texture when merging
-    them into their larger counterparts") and Figure 9.
+    them into their larger counterparts") and Figure 9; section 3.2 (pure levels).
     """
     tiles = _checked_tiles(distribution_textures)
-    index = _checked_tone_index(tone_index, len(tiles))
+    pure_levels = _checked_pure_levels(pure_levels)
+    index = _checked_tone_index(tone_index, len(tiles), pure_levels)
     rng = np.random.default_rng(rng)
     side = tiles[0].shape[0]
     cells = (-(-index.shape[0] // side), -(-index.shape[1] // side))
     turns = rng.integers(0, 4, size=(len(tiles), *cells))
+    pure = None
+    if pure_levels:  # stipple tone k is level k + 1; pure pixels copy tone 0 and are cleared
+        pure = (index == 0) | (index == len(tiles) + 1)
+        index = np.where(pure, 0, index - 1)
     out = np.empty(index.shape, dtype=np.bool_)
     _stitch_kernel(np.ascontiguousarray(index, dtype=np.int64), np.stack(tiles), turns, out)
+    if pure is not None:
+        out[pure] = False
     return out
 
 
@@ -442,13 +559,14 @@ def _stitch_kernel(index, tiles, turns, out):
                 out[r, c] = tiles[tone, last - j, i]
 
 
-def place_marks(distribution, tone_index, marks_per_tone, rng=None) -> np.ndarray:
+def place_marks(distribution, tone_index, marks_per_tone, rng=None, *, pure_levels: bool = True) -> np.ndarray:
     """Stamp the stipple marks onto the distribution image (step 4).
 
-    Pixels of levels with white marks (dark levels) start as ink, all others as paper. Black
-    marks are stamped first at the stipple pixels of black-mark levels, then white marks at
-    those of white-mark levels (the paper's order), each drawn uniformly from its level's
-    library and centred on the stipple pixel (clipped at the border).
+    Pixels of levels with white marks (dark levels) and of pure black start as ink, all others
+    (black-mark levels, pure white) as paper. Black marks are stamped first at the stipple
+    pixels of black-mark levels, then white marks at those of white-mark levels (the paper's
+    order), each drawn uniformly from its level's library and centred on the stipple pixel
+    (clipped at the border). Pure levels place no mark: stipple pixels on them are ignored.
 
     Parameters
     ----------
@@ -457,9 +575,11 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None) -> np.ndarra
     tone_index : array_like of int, 2-D
         The level map, same shape.
     marks_per_tone : sequence of sequence of Mark
-        One mark library per tone level; a level's colour is its marks' colour.
+        One mark library per stipple tone; a level's colour is its marks' colour.
     rng : None, int or numpy.random.Generator, optional
         Random source of the mark choice.
+    pure_levels : bool, optional
+        Whether ``tone_index`` counts the pure levels (0 white, ``n + 1`` black); default True.
 
     Returns
     -------
@@ -474,20 +594,24 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None) -> np.ndarra
     References
     ----------
     Kim et al. 2009, section 4.2 (black marks, then white marks; the level map; uniform choice
-    of a mark).
+    of a mark); section 3.2 (tones 0 and 9 pure white and black).
     """
     centres = check_bitonal(distribution)
     given = list(marks_per_tone)
     libraries, white = _checked_libraries(given, len(given))
     if len(libraries) < 2:
         raise ValueError(f"need at least two tone levels, got {len(libraries)} mark libraries")
-    index = _checked_tone_index(tone_index, len(libraries))
+    pure_levels = _checked_pure_levels(pure_levels)
+    index = _checked_tone_index(tone_index, len(libraries), pure_levels)
     if index.shape != centres.shape:
         raise ValueError(f"distribution {centres.shape} and tone_index {index.shape} must have one shape")
     rng = np.random.default_rng(rng)
-    canvas = white[index]
+    # the starting colour of every level (True = ink) and the library of every stipple level
+    starts_as_ink = np.concatenate([[False], white, [True]]) if pure_levels else white
+    first = 1 if pure_levels else 0
+    canvas = starts_as_ink[index]
     rows, cols = np.nonzero(centres)
-    tones = index[rows, cols]
+    tones = index[rows, cols] - first
     for colour in (False, True):
         for tone in np.flatnonzero(white == colour):
             here = tones == tone
@@ -545,7 +669,8 @@ def remove_small_chunks(image, min_size: int, *, connectivity: int = 2) -> Chunk
 
 
 def render_stippling(
-    image, distribution_textures, marks_per_tone, *, tone_grays=None, min_chunk: int = 1, rng=None
+    image, distribution_textures, marks_per_tone, *, tone_grays=None, min_chunk: int = 1, pure_levels: bool = True,
+    rng=None,
 ) -> StippleRendering:
     """Render a grayscale image as stipples (section 4: steps 1-5 of the module docstring).
 
@@ -554,13 +679,19 @@ def render_stippling(
     image : array_like of float, 2-D
         Input intensities in [0, 1] (0 black, 1 white).
     distribution_textures : sequence of array_like
-        One synthesized distribution tile per tone level (at least two), square, one shape.
+        One synthesized distribution tile per stipple tone (at least two), square, one shape.
     marks_per_tone : sequence of sequence of Mark
-        One mark library per tone level (:func:`paperlib.stipple.extraction.extract_marks`).
+        One mark library per stipple tone (:func:`paperlib.stipple.extraction.extract_marks`).
     tone_grays : array_like of float, optional
-        Gray of each level; default pre-simulated with :func:`tone_gray_levels`.
+        Gray of each stipple tone; default pre-simulated with :func:`tone_gray_levels`.
     min_chunk : int, optional
         :func:`remove_small_chunks`' ``min_size``; default 1 (no removal).
+    pure_levels : bool, optional
+        Render with the paper's pure white (tone 0) and pure black (tone 9) levels around the
+        stipple tones (section 3.2; default True): grays lighter than the lightest tone mix it
+        with paper white, grays darker than the darkest mix it with solid ink. False: the
+        stipple tones only, grays outside their range clamped to the nearest tone (the
+        rendering before pure levels were added).
     rng : None, int or numpy.random.Generator, optional
         Random source; a seed fixes the output bit for bit.
 
@@ -571,15 +702,18 @@ def render_stippling(
     Raises
     ------
     ValueError
-        As the five steps.
+        As the five steps; with ``pure_levels``, a tone gray of exactly 0 or 1 (a texture with
+        no paper or no ink is a pure level, not a stipple tone).
 
     References
     ----------
-    Kim et al. 2009, section 4 and Figures 9-11.
+    Kim et al. 2009, section 4 and Figures 9-11; section 3.2 and Figure 3 (tones 0 and 9 pure
+    white and black).
     """
     gray = _checked_image(image)
     tiles = _checked_tiles(distribution_textures)
     libraries, _ = _checked_libraries(marks_per_tone, len(tiles))
+    pure_levels = _checked_pure_levels(pure_levels)
     rng = np.random.default_rng(rng)
     if tone_grays is None:
         grays = tone_gray_levels(tiles, libraries, rng=rng)
@@ -587,9 +721,10 @@ def render_stippling(
         grays = _checked_grays(tone_grays)
         if grays.size != len(tiles):
             raise ValueError(f"need one gray per tone: {len(tiles)} tones, {grays.size} grays")
-    tone_index = select_tones(gray, grays, rng)
-    distribution = distribution_image(tone_index, tiles, rng)
-    stippled = place_marks(distribution, tone_index, libraries, rng)
+    levels = level_grays(grays, pure_levels=pure_levels)
+    tone_index = select_tones(gray, grays, rng, pure_levels=pure_levels)
+    distribution = distribution_image(tone_index, tiles, rng, pure_levels=pure_levels)
+    stippled = place_marks(distribution, tone_index, libraries, rng, pure_levels=pure_levels)
     cleaned = remove_small_chunks(stippled, min_chunk)
     return StippleRendering(
         image=cleaned.image,
@@ -598,4 +733,6 @@ def render_stippling(
         tone_grays=grays,
         removed_ink=cleaned.removed_ink,
         removed_paper=cleaned.removed_paper,
+        level_grays=levels,
+        pure_levels=pure_levels,
     )

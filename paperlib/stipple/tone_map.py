@@ -5,6 +5,12 @@ similar gray are grouped by an 8-connected component analysis (threshold ``T1``)
 sorted by gray level; evenly spaced tones are kept (threshold ``T2``); and the largest
 axis-aligned rectangle inside each kept region is cut out as that tone's example texture.
 
+The paper's tone maps have ten levels (section 3.2, Figure 3): "Tone 0 and 9 are pure white and
+black respectively", and tones 1-8 are stipple textures. Only the stipple tones are extracted:
+regions of pure paper or solid ink (within ``pure`` of white or black) are the two pure levels,
+which need no texture; :attr:`ToneMap.level_grays` lists all levels, pure ones included, as the
+rendering of section 4 uses them (:func:`paperlib.stipple.rendering.level_grays`).
+
 The paper gives ``N = 30`` for its Figure 4 and no values for ``T1`` or ``T2``; it says that
 "extraction should be somewhat controlled by adjusting the size of a block and the two
 thresholds". Our defaults and the reading of the paper's sentences are stated in
@@ -72,6 +78,15 @@ class ToneMap:
         """Ink fraction of each tone, ``1 - gray_levels`` (0 white .. 1 black), increasing."""
         return 1.0 - self.gray_levels
 
+    @property
+    def level_grays(self) -> np.ndarray:
+        """Grays of the whole tone map: pure white (tone 0), the extracted tones, pure black.
+
+        ``[1, *gray_levels, 0]``: the paper's 10 levels for 8 extracted tones (section 3.2,
+        "Tone 0 and 9 are pure white and black respectively"; Figure 3).
+        """
+        return np.concatenate([[1.0], self.gray_levels, [0.0]])
+
     def __len__(self) -> int:
         return len(self.textures)
 
@@ -105,6 +120,16 @@ def _positive_int(value, name: str) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
         raise ValueError(f"{name} must be a positive integer, got {value!r}")
     return int(value)
+
+
+def _pure_margin(value) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"pure must be a number in [0, 0.5), got {value!r}") from None
+    if not (0.0 <= number < 0.5):
+        raise ValueError(f"pure must be in [0, 0.5), got {value!r}")
+    return number
 
 
 def _threshold(value, name: str) -> float:
@@ -272,7 +297,7 @@ def _select_even_tones(order, grays, areas, t2):
     return kept
 
 
-def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min_size=64) -> ToneMap:
+def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min_size=64, pure=0.01) -> ToneMap:
     """Extract an artist's tone map from a stipple drawing (Kim 2009, section 3.1).
 
     Parameters
@@ -296,6 +321,11 @@ def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min
     min_size : int, optional
         Smallest side of an extracted texture in pixels (default 64); regions holding no
         rectangle of whole blocks at least this large on both sides are not tones.
+    pure : float, optional
+        Regions whose mean ink fraction is below ``pure`` or above ``1 - pure`` are the pure
+        white and pure black levels (tones 0 and 9 of section 3.2), not stipple tones: they get
+        no texture (default 0.01, a speck of dust per 10 x 10 px; the lightest stipple tone of
+        Andrews' maps holds several times more ink). In [0, 0.5); 0 keeps every region.
 
     Returns
     -------
@@ -308,7 +338,7 @@ def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min
         For a non-2-D, empty, NaN or wrongly typed image, bad parameters, when no region is
         large enough for a ``min_size`` texture (the paper's stated limit: "our method assumes
         that there exists large enough regions in the stipple image for each tone level"), or
-        when fewer than two tones are found.
+        when fewer than two stipple tones are found (pure white and black do not count).
 
     Notes
     -----
@@ -330,6 +360,9 @@ def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min
     4. The texture of a region is the largest axis-aligned rectangle of its whole blocks
        (:func:`largest_rectangle` on the block grid, exact since a region is a union of blocks)
        whose sides are both at least ``min_size`` pixels.
+    5. "Tone 0 and 9 are pure white and black respectively" (section 3.2): regions within
+       ``pure`` of white or black are those two levels and are left out of the stipple tones
+       (before step 3, so blank paper does not skew the tone spacing).
 
     References
     ----------
@@ -340,20 +373,28 @@ def extract_tone_map(image, block_size=DEFAULT_BLOCK_SIZE, t1=0.05, t2=0.03, min
     t1 = _threshold(t1, "t1")
     t2 = _threshold(t2, "t2")
     min_size = _positive_int(min_size, "min_size")
+    pure = _pure_margin(pure)
     min_blocks = math.ceil(min_size / n)
     labels = segment_blocks(block_gray, t1)
 
     region_ids, grays, rectangles = [], [], []
+    n_pure = 0
     for region in range(1, labels.max() + 1):
         box = largest_rectangle(labels == region, min_blocks, min_blocks)
-        if box is not None:
-            region_ids.append(region)
-            grays.append(float(block_gray[labels == region].mean()))
-            rectangles.append(tuple(n * v for v in box))
+        if box is None:
+            continue
+        gray = float(block_gray[labels == region].mean())
+        if pure > 0 and (gray > 1.0 - pure or gray < pure):
+            n_pure += 1  # tone 0 or tone 9: pure white or black, no texture (section 3.2)
+            continue
+        region_ids.append(region)
+        grays.append(gray)
+        rectangles.append(tuple(n * v for v in box))
     if not region_ids:
+        found = f" ({n_pure} large region(s) are pure white or black, which are not stipple tones)" if n_pure else ""
         raise ValueError(
-            f"no region holds a {min_size} x {min_size} texture: section 3.1 assumes a large enough region per "
-            f"tone; lower block_size or min_size, raise t1, or extract the tones by hand"
+            f"no region holds a {min_size} x {min_size} stipple texture{found}: section 3.1 assumes a large enough "
+            f"region per tone; lower block_size or min_size, raise t1, or extract the tones by hand"
         )
     areas = [(r1 - r0) * (c1 - c0) for r0, c0, r1, c1 in rectangles]
     order = sorted(range(len(grays)), key=lambda i: -grays[i])
