@@ -15,7 +15,8 @@
 :func:`ledger_table` joins the claims with a statistics check
 (:func:`paperlib.repro.check_stats`): a claim whose statistics all pass is
 *reproduced*, one whose statistics all fail or are expected failures is *not*, a mix is
-*partly*, and a claim without statistics is *not checked*. :func:`write_ledger` writes
+*partly*, and a claim without statistics is *not checked* (as is one whose statistics were all
+skipped, an optional comparison whose package is not installed). :func:`write_ledger` writes
 the table as ``figures/ledger_<paper>.md``.
 
 Like :mod:`paperlib.repro`, this module knows no method: it only reads claims and
@@ -185,6 +186,7 @@ def ledger_table(claims: Claims, check: pd.DataFrame) -> pd.DataFrame:
 
 
 def _verdict(statuses: list[str]) -> str:
+    statuses = [status for status in statuses if status != "skipped"]  # optional comparison not installed
     if not statuses:
         return "not checked"
     passed = sum(status == "pass" for status in statuses)

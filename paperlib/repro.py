@@ -41,6 +41,7 @@ This module knows no method: it only moves numbers and files.
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import math
 import re
@@ -73,14 +74,16 @@ QUALITIES = ("ci", "paper")
 STATS_FILE = "stats.json"
 TIME_PREFIX = "time_"
 CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "kind", "source", "status", "ok", "reason"]
-#: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time.
-OK_STATUSES = ("pass", "xfail", "shown")
+#: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time,
+#: an entry of an optional comparison whose package (its ``requires``) is not installed.
+OK_STATUSES = ("pass", "xfail", "shown", "skipped")
 EXPECTED_FILE = "tests/expected_stats.toml"
 
 _NAME_PATTERN = re.compile(r"^[A-Za-z][A-Za-z0-9_.\-]*$")
+_PACKAGE_PATTERN = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*$")
 _MAX_ITEMS = 10_000  # a statistic is a number or a small table, never raw data
 _BOUND_KEYS = {"value", "rtol", "atol", "min", "max", "xfail"}
-_SPEC_KEYS = _BOUND_KEYS | {"source", "kind"}
+_SPEC_KEYS = _BOUND_KEYS | {"source", "kind", "requires"}
 
 #: Where an expected number comes from (DESIGN.md, "Validation: what a statistic must prove").
 KINDS = ("paper", "oracle", "truth", "seed-study", "budget")
@@ -303,8 +306,16 @@ def load_expected(path, notebooks=None) -> dict:
         if not isinstance(statistics, dict):
             raise ValueError(f"{path}: [{notebook}] must be a table of statistics")
         for statistic, spec in statistics.items():
-            _validate_spec(spec, f"{path}: [{notebook}.{statistic}]", statistic)
+            where = f"{path}: [{notebook}.{statistic}]"
+            _validate_spec(spec, where, statistic)
+            _validate_requires(spec, where)
     return expected
+
+
+def _validate_requires(spec: dict, where: str) -> None:
+    """``requires`` names the Python package an optional comparison needs (e.g. ``"plenoptic"``)."""
+    if "requires" in spec and not (isinstance(spec["requires"], str) and _PACKAGE_PATTERN.match(spec["requires"])):
+        raise ValueError(f"{where}: 'requires' must name a Python package, got {spec['requires']!r}")
 
 
 def read_toml(path, what: str = "expected statistics") -> dict:
@@ -512,6 +523,10 @@ def _check_statistic(notebook: str, statistic: str, spec: dict, recorded: dict, 
     expected_text, tolerance = _describe(resolved)
     row = dict(notebook=notebook, statistic=statistic, expected=expected_text, tolerance=tolerance,
                kind=spec["kind"], source=spec["source"])
+    required = spec.get("requires")
+    if required is not None and importlib.util.find_spec(required) is None:
+        return _row(**row, value=recorded.get(statistic), reason=f"not checked: {required} is not installed",
+                    status="skipped")
     if statistic not in recorded:
         return _row(**row, reason="expected but not recorded")
     value = recorded[statistic]

@@ -273,3 +273,23 @@ def test_tables_compare_key_by_key_with_tolerance(tmp_path):
 def test_outputs_are_world_readable(run_dir):
     repro.record("a", 1)
     assert (run_dir / "stats.json").stat().st_mode & 0o777 == 0o644
+
+
+def test_requires_skips_an_optional_comparison_whose_package_is_absent(tmp_path):
+    """An entry with ``requires = "<package>"`` is checked only where that package is installed."""
+    folder = tmp_path / "figures" / "nb"
+    folder.mkdir(parents=True)
+    (folder / "stats.json").write_text(json.dumps({"quality": "ci", "statistics": {"a": 1.0}}))
+    expected = tmp_path / "expected.toml"
+    expected.write_text(
+        '[nb.a]\nkind = "truth"\nvalue = 1.0\nsource = "by construction"\n\n'
+        '[nb.b]\nkind = "truth"\nvalue = 2.0\nrequires = "no_such_package_here"\nsource = "by construction"\n\n'
+        '[nb.c]\nkind = "truth"\nvalue = 3.0\nrequires = "json"\nsource = "by construction"\n'
+    )
+    table = repro.check_stats(tmp_path / "figures", expected).set_index("statistic")
+    assert table.loc["a", "status"] == "pass"
+    assert table.loc["b", "status"] == "skipped" and table.loc["b", "ok"]
+    assert table.loc["c", "status"] == "FAIL" and "not recorded" in table.loc["c", "reason"]  # json is installed
+    expected.write_text('[nb.a]\nkind = "truth"\nvalue = 1.0\nrequires = "not a package"\nsource = "by construction"\n')
+    with pytest.raises(ValueError, match="requires"):
+        repro.load_expected(expected)
