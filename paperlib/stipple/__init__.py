@@ -36,15 +36,19 @@ from .glcm import (
     flip_update_kernel,
     glcm_features,
     normalized_glcms,
+    offset_directions,
     paper_offsets,
     pair_totals,
     to_bitonal,
 )
 from .library import StippleLibrary, learn_stipple_library
 from .rendering import (
+    PURE_BLACK,
+    PURE_WHITE,
     ChunkRemoval,
     StippleRendering,
     distribution_image,
+    level_grays,
     place_marks,
     remove_small_chunks,
     render_stippling,
@@ -52,7 +56,21 @@ from .rendering import (
     select_tones,
     tone_gray_levels,
 )
-from .synthesis import StippleGeometry, SynthesisResult, stipple_geometry, synthesize_distribution
+from .spacing import (
+    SpacingComparison,
+    block_dispersion,
+    compare_spacing,
+    nearest_neighbour_distances,
+    pair_correlation,
+    stipple_pattern,
+)
+from .synthesis import (
+    StippleGeometry,
+    SynthesisResult,
+    paper_radius_quantiles,
+    stipple_geometry,
+    synthesize_distribution,
+)
 from .tone_map import ToneMap, block_gray_levels, extract_tone_map, largest_rectangle, segment_blocks
 from .voronoi_stippling import (
     VoronoiStipples,
@@ -63,11 +81,11 @@ from .voronoi_stippling import (
 )
 
 __all__ = [
-    "ace", "ace_change_kernel", "block_gray_levels", "check_bitonal", "ChunkRemoval", "classify_level",
+    "ace", "ace_change_kernel", "block_dispersion", "block_gray_levels", "compare_spacing", "check_bitonal", "ChunkRemoval", "classify_level",
     "cooccurrence_counts", "distribution_image", "DistributionResult", "extract_distribution", "extract_marks",
     "extract_tone_map", "flip_update", "flip_update_kernel", "glcm_features", "GLCMFeatures", "largest_rectangle",
-    "LEVELS", "learn_stipple_library", "Mark", "normalized_glcms", "pair_totals", "paper_offsets", "place_marks", "remove_small_chunks",
-    "render_stipples", "render_stippling", "render_tone", "segment_blocks", "select_tones", "stipple_density",
+    "LEVELS", "learn_stipple_library", "level_grays", "offset_directions", "paper_radius_quantiles", "PURE_BLACK", "PURE_WHITE", "Mark", "nearest_neighbour_distances", "pair_correlation", "normalized_glcms", "pair_totals", "paper_offsets", "place_marks", "remove_small_chunks",
+    "render_stipples", "render_stippling", "render_tone", "segment_blocks", "select_tones", "SpacingComparison", "stipple_density", "stipple_pattern",
     "stipple_geometry", "StippleGeometry", "StippleLibrary", "StippleRendering", "SynthesisResult", "synthesize_distribution",
     "to_bitonal", "tone_gray_levels", "ToneMap", "VoronoiStipples", "weighted_centroids",
     "weighted_voronoi_stipples"
