@@ -13,6 +13,7 @@ import pytest
 import shapely
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+from matplotlib.colors import to_rgb
 from scipy.stats import spearmanr
 
 from paperlib.datasets.strokepatterns import (
@@ -161,10 +162,11 @@ def test_epsilon_margin_between_and_within_elements(name, seed):
     owner = np.concatenate([labels, np.arange(n)])
     i, j = nearby_pairs(boxes, 3 * epsilon)
     prox, cont = proximity_and_continuation(boxes, i, j, epsilon)
-    # boxes of different elements: neither measure comes within 2 epsilon
+    # boxes of different elements: neither measure comes within 2 epsilon (the ringed drops have no pair of
+    # different elements within reach at all: no two drops are neighbours and the hatches are short)
     other = owner[i] != owner[j]
-    assert prox[other].min() >= 2 * epsilon
-    assert cont[other].min() >= 2 * epsilon
+    assert np.all(prox[other] >= 2 * epsilon)
+    assert np.all(cont[other] >= 2 * epsilon)
     # strokes of one element: the links of at most epsilon / 2 connect them all
     bound = ~other & (i < len(labels)) & (j < len(labels)) & (np.minimum(prox, cont) <= epsilon / 2)
     adjacency = np.zeros((len(labels), len(labels)))
@@ -304,10 +306,12 @@ def test_counts_of_strokes_per_element():
         per, kind = counts(drops), drops.params["kind"]
         assert set(kind) == {"drop", "hatch"} and np.all(per[kind == "hatch"] == 1)
         assert set(per[kind == "drop"]) == {1, 2}
-    # about one hatch in four is dashed; about half the drop sites are drops
+    # about one hatch in four is dashed; one site in three is a drop (ringed drops), about half at random
     dashed = np.concatenate([make("sketchy", s).params["kind"] == "dashed-hatch" for s in SEEDS])
     assert 0.1 < dashed.mean() < 0.4
     drop = np.concatenate([make("drops", s).params["kind"] == "drop" for s in SEEDS])
+    assert 0.3 < drop.mean() < 0.37
+    drop = np.concatenate([drops_exemplar(structure="random", rng=s).params["kind"] == "drop" for s in SEEDS])
     assert 0.4 < drop.mean() < 0.6
     assert make("jittered", 0).n_elements == 30 and make("gradient-length", 0).n_elements == 30
     assert make("alternating", 0).n_elements == 24 and make("irregular", 0).n_elements == 100
@@ -373,7 +377,7 @@ def test_flowers_reach_their_designed_radius():
 
 
 @pytest.mark.parametrize(("parameter", "low", "high"), [("orientation", np.radians(50), np.radians(130)),
-                                                         ("length", 1.0, 4.0), ("thickness", 0.05, 0.6)])
+                                                         ("length", 0.5, 4.0), ("thickness", 0.05, 0.75)])
 def test_gradients_ramp_monotonically_along_the_path(parameter, low, high):
     exemplar = make(f"gradient-{parameter}", 0)
     values = exemplar.params[parameter]
@@ -381,13 +385,28 @@ def test_gradients_ramp_monotonically_along_the_path(parameter, low, high):
     assert values[0] == pytest.approx(low) and values[-1] == pytest.approx(high)
     assert np.all(np.diff(values) > 0)
     # the other parameters stay constant
-    constants = {"orientation": np.pi / 2, "length": 2.5, "thickness": 0.08}
+    constants = {"orientation": np.pi / 2, "length": 0.8 if parameter == "thickness" else 2.5, "thickness": 0.08}
     for other, value in constants.items():
         if other != parameter:
             np.testing.assert_allclose(exemplar.params[other], value)
     # the stroke widths carry the thickness ramp
     widths = np.array([s.width for s in exemplar.strokes])
     np.testing.assert_array_equal(widths, exemplar.params["thickness"])
+
+
+def test_colour_ramp_and_jitter():
+    exemplar = gradient_hatching_exemplar("color", rng=0)
+    rgb = np.array([to_rgb(c) for c in exemplar.params["color"]])
+    np.testing.assert_allclose(rgb[0], (0.85, 0.2, 0.1), atol=0.003)  # hex colours: 1/255 steps
+    np.testing.assert_allclose(rgb[-1], (0.1, 0.2, 0.85), atol=0.003)
+    assert np.all(np.diff(rgb[:, 0]) < 0) and np.all(np.diff(rgb[:, 2]) > 0)
+    # the ramps span at least 5 of the paper's thresholds (section 3.1): colour distance / sigma_col
+    assert np.hypot.reduce(rgb[-1] - rgb[0]) / 0.15 >= 5
+    noisy = gradient_hatching_exemplar("orientation", rng=0, jitter=1.0)
+    steps = np.diff(noisy.params["orientation"])
+    assert np.any(steps < 0) and spearmanr(noisy.params["orientation"], noisy.params["arc"]).statistic > 0.9
+    with pytest.raises(ValueError, match="jitter"):
+        gradient_hatching_exemplar("length", jitter=-1)
 
 
 def test_colours_alternate_along_the_path():
@@ -398,6 +417,113 @@ def test_colours_alternate_along_the_path():
     three = alternating_color_exemplar(9, colors=("red", "green", "blue"), rng=0)
     assert list(three.params["color"][:4]) == ["red", "green", "blue", "red"]
     assert [s.color for s in three.strokes] == list(three.params["color"])
+
+
+# --------------------------------------------------------------------------- Figure 7: designed neighbour structure
+
+
+def _lattice_neighbours(exemplar, spacing):
+    """Pairs of lattice neighbours (centres closer than 1.5 spacings: the jittered lattice's nearest
+    neighbours, never the next ring)."""
+    return cKDTree(exemplar.params["position"]).query_pairs(1.5 * spacing, output_type="ndarray")
+
+
+def _shuffled_shares(labels, pairs, n_shuffles=200, seed=0):
+    """Share of ``pairs`` joining equal labels after each of ``n_shuffles`` random permutations of the labels."""
+    rng = np.random.default_rng(seed)
+    labels = np.asarray(labels)
+    return np.array([np.mean(p[pairs[:, 0]] == p[pairs[:, 1]])
+                     for p in (rng.permutation(labels) for _ in range(n_shuffles))])
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_bars_are_parallel_within_patches(seed):
+    exemplar = make("bars", seed)
+    pairs = _lattice_neighbours(exemplar, 1.25)
+    angles = exemplar.params["orientation"]
+    turn = np.degrees(_angle_difference(angles[pairs[:, 0]], angles[pairs[:, 1]]))
+    direction = np.round(np.degrees(angles) / 60.0).astype(int) % 3
+    assert set(direction) == {0, 1, 2}  # still "bars oriented in multiple directions"
+    # a neighbour is either parallel (the +-3 degree turns) or a whole direction step away (a patch border)
+    assert np.all((turn <= 6.0 + 1e-9) | (np.abs(turn - 60.0) <= 6.0 + 1e-9))
+    parallel = np.mean(turn <= 6.0 + 1e-9)
+    shuffles = _shuffled_shares(direction, pairs)
+    assert parallel >= 0.6 and parallel > shuffles.max() + 0.15
+    # neighbour direction differences: much smaller than a shuffle's (the median pair is parallel, against a
+    # whole direction step for two in three pairs after a shuffle)
+    rng = np.random.default_rng(seed)
+    shuffled = rng.permutation(angles)
+    turn_shuffled = np.degrees(_angle_difference(shuffled[pairs[:, 0]], shuffled[pairs[:, 1]]))
+    assert np.median(turn) <= 6.0 and np.median(turn_shuffled) >= 50.0
+    assert turn.mean() < 0.65 * turn_shuffled.mean()
+    # the control: independent directions are no more parallel than a shuffle
+    independent = bars_exemplar(structure="random", rng=seed)
+    pairs = _lattice_neighbours(independent, 1.25)
+    direction = np.round(np.degrees(independent.params["orientation"]) / 60.0).astype(int) % 3
+    assert abs(np.mean(direction[pairs[:, 0]] == direction[pairs[:, 1]]) - 1 / 3) < 0.1
+
+
+def test_bar_patches_follow_patch_size():
+    share = {}
+    for size in (2.0, 6.0):
+        exemplar = bars_exemplar(patch_size=size, rng=0)
+        pairs = _lattice_neighbours(exemplar, 1.25)
+        angles = exemplar.params["orientation"]
+        share[size] = np.mean(np.degrees(_angle_difference(angles[pairs[:, 0]], angles[pairs[:, 1]])) <= 6.0)
+    assert share[6.0] > share[2.0] + 0.1
+    single = bars_exemplar(directions_deg=(45.0,), rng=0)
+    assert np.degrees(_angle_difference(single.params["orientation"], np.pi / 4)).max() <= 3.0 + 1e-9
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_drops_are_ringed_by_hatches(seed):
+    exemplar = make("drops", seed)
+    pairs = _lattice_neighbours(exemplar, 1.25)
+    drop = exemplar.params["kind"] == "drop"
+    assert not np.any(drop[pairs[:, 0]] & drop[pairs[:, 1]])  # no two drops are neighbours
+    degree = np.bincount(pairs.ravel(), minlength=exemplar.n_elements)
+    drop_neighbours = np.bincount(pairs[drop[pairs[:, 1]], 0], minlength=exemplar.n_elements) + \
+        np.bincount(pairs[drop[pairs[:, 0]], 1], minlength=exemplar.n_elements)
+    inner = degree == 6
+    assert inner.sum() > 30
+    # an inner hatch has three drop neighbours and three hatch neighbours; an inner drop six hatches
+    assert np.all(drop_neighbours[inner & ~drop] == 3) and np.all(drop_neighbours[inner & drop] == 0)
+    same = np.mean(drop[pairs[:, 0]] == drop[pairs[:, 1]])
+    shuffles = _shuffled_shares(drop, pairs)
+    assert abs(same - 1 / 3) < 0.05 and shuffles.min() > same + 0.1 and abs(shuffles.mean() - 5 / 9) < 0.05
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_flower_colours_form_bands(seed):
+    exemplar = make("flowers", seed)
+    colors = exemplar.params["color"]
+    rows = np.round((exemplar.params["position"][:, 1].max() - exemplar.params["position"][:, 1])
+                    / (1.3 * np.sqrt(3) / 2)).astype(int)
+    band_colors = [set(colors[(rows // 2) == band]) for band in range(rows.max() // 2 + 1)]
+    assert all(len(c) == 1 for c in band_colors)  # one colour per band of two rows
+    sequence = [c.pop() for c in band_colors]
+    assert all(a != b for a, b in zip(sequence, sequence[1:]))  # the bands take the colours in turn
+    assert len(sequence) >= 4 and all(sequence[k] == sequence[k - 3] for k in range(3, len(sequence)))
+    pairs = _lattice_neighbours(exemplar, 1.3)
+    same = np.mean(colors[pairs[:, 0]] == colors[pairs[:, 1]])
+    shuffles = _shuffled_shares(colors, pairs)
+    assert same >= 0.6 and shuffles.max() < same - 0.15
+    one_row = flowers_exemplar(band_rows=1, rng=seed)
+    rows_one = np.round((one_row.params["position"][:, 1].max() - one_row.params["position"][:, 1])
+                        / (1.3 * np.sqrt(3) / 2)).astype(int)
+    assert all(len(set(one_row.params["color"][rows_one == r])) == 1 for r in range(rows_one.max() + 1))
+    independent = flowers_exemplar(structure="random", rng=seed)
+    pairs = _lattice_neighbours(independent, 1.3)
+    assert np.mean(independent.params["color"][pairs[:, 0]] == independent.params["color"][pairs[:, 1]]) < 0.45
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_two_hatchings_alternate_along_rows_and_columns(seed):
+    exemplar = make("two-hatchings", seed)
+    # the four row and column neighbours (1.2 +- 0.12 away; the diagonals are 1.7 +- 0.12 away)
+    pairs = cKDTree(exemplar.params["position"]).query_pairs(1.2 * 1.2, output_type="ndarray")
+    kind = exemplar.params["kind"]
+    assert np.all(kind[pairs[:, 0]] != kind[pairs[:, 1]])
 
 
 def test_jittered_hatching_offsets():
@@ -479,7 +605,7 @@ def test_generators_are_seeded(name):
         lambda: jittered_hatching_exemplar(length=0),
         lambda: jittered_hatching_exemplar(vertical_jitter=-0.1),
         lambda: jittered_hatching_exemplar(vertical_jitter="big"),
-        lambda: gradient_hatching_exemplar("color"),
+        lambda: gradient_hatching_exemplar("colour"),
         lambda: gradient_hatching_exemplar("length", 1),
         lambda: gradient_hatching_exemplar("length", spacing=float("inf")),
         lambda: alternating_color_exemplar(colors=("#000000",)),
@@ -495,6 +621,12 @@ def test_generators_are_seeded(name):
         lambda: flowers_exemplar(colors=()),
         lambda: flowers_exemplar(width=2.0, height=1.0),
         lambda: two_hatchings_exemplar(width=float("nan")),
+        lambda: bars_exemplar(structure="stripes"),
+        lambda: bars_exemplar(patch_size=0),
+        lambda: drops_exemplar(structure="patches"),
+        lambda: flowers_exemplar(structure=None),
+        lambda: flowers_exemplar(band_rows=0),
+        lambda: flowers_exemplar(band_rows=1.5),
         lambda: irregular_exemplar(2),
         lambda: irregular_exemplar(2000),
         lambda: irregular_exemplar(width=1.0, height=1.0),

@@ -25,8 +25,8 @@ from paperlib.strokepattern import (
     unskewed_delaunay_edges,
     vary_positions,
 )
-from paperlib.strokepattern._kernels import grow, grow_reference
-from paperlib.strokepattern.synthesis import _graph_arrays
+from paperlib.strokepattern._kernels import BEST, CLOSE, RANDOM, grow, grow_reference
+from paperlib.strokepattern.synthesis import _graph_arrays, pairing_gate, seed_patch
 
 
 def segment(a, b, width=0.05, color="#000000"):
@@ -256,14 +256,23 @@ def test_kernel_matches_python_reference():
     tables = measure_tables(analysis.boxes.half_lengths, analysis.boxes.angles, analysis.colors)
     sigmas = Thresholds().vector(analysis.mean_length)
     uniforms = np.random.default_rng(4).random(40)
+    gate2 = pairing_gate(analysis) ** 2
     for rings in (1, 2):
-        for best_only in (False, True):
-            arguments = (order, *_graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings),
-                         *_graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings),
-                         tables, sigmas, uniforms, best_only)
+        target_graph = _graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings)
+        reference_graph = _graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings)
+        patch = seed_patch(target_graph, order[0], reference_graph, 5, pairing_gate(analysis))
+        free = np.full(40, -1)
+        for mode, initial, coverage in ((RANDOM, free, False), (BEST, patch, True), (CLOSE, patch, True),
+                                        (CLOSE, free, False)):
+            arguments = (order, *target_graph, *reference_graph, tables, sigmas, uniforms, initial, mode, 0.1, gate2,
+                         coverage)
             fast, slow = grow(*arguments), grow_reference(*arguments)
             for a, b in zip(fast, slow):
                 np.testing.assert_array_equal(a, b)
+            seeded = initial >= 0
+            np.testing.assert_array_equal(fast[0][seeded], initial[seeded])
+        ring_size = target_graph[0][order[0] + 1] - target_graph[0][order[0]]
+        assert 1 < (patch >= 0).sum() <= ring_size + 1
 
 
 def test_synthesis_is_reproducible_and_copies_reference_elements():

@@ -50,6 +50,7 @@ from .strokepatterns import (
     jittered_hatching_exemplar,
     sketchy_hatching_exemplar,
     two_hatchings_exemplar,
+    wave_hatching_exemplar,
 )
 
 __all__ = [
@@ -99,4 +100,5 @@ __all__ = [
     "jittered_hatching_exemplar",
     "sketchy_hatching_exemplar",
     "two_hatchings_exemplar",
+    "wave_hatching_exemplar",
 ]

@@ -15,12 +15,16 @@ generator                              what it draws (paper figure)
                                        (Fig. 6 b)
 :func:`gradient_hatching_exemplar`     single strokes whose orientation, length or pen width ramps
                                        linearly along the path (Fig. 6 c-e)
+:func:`wave_hatching_exemplar`         single strokes whose orientation swings gradually back and forth
+                                       (a stationary pattern of gradual changes, Fig. 6 c)
 :func:`alternating_color_exemplar`     thick, slightly wavy brush strokes whose colours alternate along the
                                        path (Fig. 6 f)
-:func:`bars_exemplar`                  straight bars in several directions in a region (Fig. 7 a)
-:func:`drops_exemplar`                 water drops (outline, sometimes a highlight inside) mixed with short
-                                       hatches (Fig. 7 b)
-:func:`flowers_exemplar`               flowers of five petal loops and a centre, one colour each (Fig. 7 c)
+:func:`bars_exemplar`                  straight bars in several directions in a region, parallel within
+                                       patches (Fig. 7 a)
+:func:`drops_exemplar`                 water drops (outline, sometimes a highlight inside), each ringed by six
+                                       short hatches (Fig. 7 b)
+:func:`flowers_exemplar`               flowers of five petal loops and a centre, one colour each, colours in
+                                       horizontal bands (Fig. 7 c)
 :func:`two_hatchings_exemplar`         two kinds of hatches in a checkerboard (Fig. 7 d)
 :func:`irregular_exemplar`             small marks at clearly non-uniform (clustered) positions (Fig. 7 e)
 =====================================  ======================================================================
@@ -80,6 +84,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from matplotlib.colors import to_hex
 
 from paperlib._checks import positive_number
 from paperlib.geometry import Stroke
@@ -95,6 +100,7 @@ __all__ = [
     "jittered_hatching_exemplar",
     "sketchy_hatching_exemplar",
     "two_hatchings_exemplar",
+    "wave_hatching_exemplar",
 ]
 
 #: Pen width of the thin (pen-and-ink) strokes.
@@ -109,7 +115,18 @@ _LATTICE_JITTER = 0.05
 #: the heart. Wide lobes that overlap at the heart keep Barla's greedy clustering within 0.54 petal length.
 _PETAL_HALF_ANGLE = math.radians(80.0)
 _PETAL_BACK = 0.4
-_GRADIENT_RANGES = {"orientation": (50.0, 130.0), "length": (1.0, 4.0), "thickness": (0.05, 0.6)}
+#: Gradient ramps (first and last value) and the constants of the other parameters. Each ramp spans at least
+#: 5 of the paper's thresholds for the measure that sees it (section 3.1): orientation 80 degrees = 8.9 sigma_par
+#: (pi / 20); length ratio 8 = 5.1 steps of sigma_ov (1.5^5.1); thickness 0.70 = 5.7 sigma_sup (0.1 L, L = 1.22 the
+#: mean contour length); colour RGB distance 1.06 = 7.1 sigma_col (0.15).
+_GRADIENT_RANGES = {"orientation": (50.0, 130.0), "length": (0.5, 4.0), "thickness": (0.05, 0.75),
+                    "color": (0.0, 1.0)}
+_GRADIENT_CONSTANTS = {"orientation": 90.0, "length": 2.5, "thickness": PEN_WIDTH}
+#: Length of the strokes of the thickness ramp: short, so that 0.1 L (sigma_sup) is small beside the ramp.
+_THICKNESS_RAMP_LENGTH = 0.8
+#: Pen width of the colour ramp's strokes (brush strokes, so the colour is visible).
+_COLOR_RAMP_WIDTH = 0.25
+_COLOR_RAMP_ENDS = ((0.85, 0.2, 0.1), (0.1, 0.2, 0.85))
 
 
 @dataclass(frozen=True, eq=False)
@@ -256,15 +273,20 @@ def _drawing_order(centers: np.ndarray, row_height: float) -> np.ndarray:
 
 def _region_centers(width: float, height: float, spacing: float, rng, *,
                     hexagonal: bool = True) -> tuple[np.ndarray, np.ndarray]:
-    """Jittered lattice centres in drawing order, and the parity of their lattice cell (a checkerboard
-    colouring for the square lattice)."""
+    """Jittered lattice centres in drawing order, and each centre's integer lattice cell ``(column, row)``.
+
+    Rows count up from the bottom row. Columns count in spacings on the square lattice (so that
+    ``(column + row) % 2`` is a checkerboard colouring) and in half spacings on the hexagonal one (even on
+    even rows, odd on the shifted rows: a site's six neighbours are at column +-2 on its row and +-1 on the
+    rows above and below, so ``column % 3`` is a colouring in three classes in which no two neighbours
+    share a class)."""
     lattice = _lattice(width, height, spacing, hexagonal=hexagonal)
     if lattice.shape[0] < 3:
         raise ValueError(f"a {width:g} x {height:g} region holds fewer than 3 elements: make it larger")
     lattice = lattice[_drawing_order(lattice, spacing / 2.0)]
-    cell = np.round((lattice - lattice.min(axis=0)) / spacing).astype(int)
-    parity = (cell[:, 0] + cell[:, 1]) % 2
-    return lattice + _disc_jitter(len(lattice), _LATTICE_JITTER * spacing, rng), parity
+    steps = np.array([spacing / 2.0, spacing * math.sqrt(3.0) / 2.0]) if hexagonal else np.array([spacing, spacing])
+    cells = np.round((lattice - lattice.min(axis=0)) / steps).astype(int)
+    return lattice + _disc_jitter(len(lattice), _LATTICE_JITTER * spacing, rng), cells
 
 
 def _region(width, height) -> tuple[float, float, object]:
@@ -435,28 +457,111 @@ def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertic
                                  f"{vertical_jitter:g} (stand-in for Barla 2006, Fig. 6b)")
 
 
-def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, rng=None) -> StrokePatternExemplar:
-    """Single straight strokes whose orientation, length or pen width ramps along the path (synthetic).
+def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=0.0,
+                               rng=None) -> StrokePatternExemplar:
+    """Single straight strokes whose orientation, length, pen width or colour ramps along the path (synthetic).
 
     The chosen parameter is a linear, increasing function of the designed arc length ``(i + 0.5) *
-    spacing`` from its first to its last value; the others stay constant:
+    spacing`` from its first to its last value, plus, with ``jitter > 0``, Gaussian noise of standard deviation
+    ``jitter`` ramp steps (a hand-drawn ramp); the others stay constant:
 
     ===============  ==============================  =========================================
     parameter        ramp                            constants
     ===============  ==============================  =========================================
     ``orientation``  50 to 130 degrees from x        length 2.5, pen width 0.08
-    ``length``       1.0 to 4.0                      vertical, pen width 0.08
-    ``thickness``    pen width 0.05 to 0.6           vertical, length 2.5
+    ``length``       0.5 to 4.0                      vertical, pen width 0.08
+    ``thickness``    pen width 0.05 to 0.75          vertical, length 0.8
+    ``color``        RGB (0.85, 0.2, 0.1) to         vertical, length 2.5, pen width 0.25
+                     (0.1, 0.2, 0.85)
     ===============  ==============================  =========================================
 
-    (lengths and widths in units of ``spacing``). Positions jitter by at most 0.02 spacing along and
-    across the path, small enough to keep the elements in order.
+    (lengths and widths in units of ``spacing``). Each ramp spans at least 5 of the paper's thresholds for
+    the measure that sees it (8.9 sigma_par, 5.1 sigma_ov steps, 5.7 sigma_sup, 7.1 sigma_col), so that a
+    synthesis that loses the ramp is visible to the matching rule. Positions jitter by at most 0.02 spacing
+    along and across the path, small enough to keep the elements in order.
 
     Parameters
     ----------
-    parameter : {"orientation", "length", "thickness"}
+    parameter : {"orientation", "length", "thickness", "color"}
     n_elements : int
         Number of strokes (>= 2).
+    spacing : float
+        Designed distance between neighbouring strokes (> 0); ``epsilon = 0.2 * spacing``.
+    jitter : float
+        Standard deviation of the noise on the ramped parameter, in ramp steps (>= 0, at most 3); values are
+        clipped to the ramp's range.
+    rng : None, int or numpy.random.Generator
+
+    Returns
+    -------
+    StrokePatternExemplar
+        One-dimensional, one stroke per element, ``kind="hatch"``; ``params["color"]`` holds hex colours.
+
+    Raises
+    ------
+    ValueError
+        On an unknown parameter, a count below 2, a non-positive spacing or a jitter outside [0, 3].
+
+    References
+    ----------
+    Barla et al. 2006, Figure 6 c-e (smooth changes of orientation, length and thickness) and section 3.1
+    (the thresholds).
+    """
+    if parameter not in _GRADIENT_RANGES:
+        raise ValueError(f"parameter must be one of {sorted(_GRADIENT_RANGES)}, got {parameter!r}")
+    n, spacing = _check_1d(n_elements, spacing)
+    jitter = _between(jitter, "jitter", 0.0, 3.0)
+    rng = np.random.default_rng(rng)
+    low, high = _GRADIENT_RANGES[parameter]
+    step = (high - low) / (n - 1)
+    ramp = np.clip(low + step * (np.arange(n) + jitter * rng.standard_normal(n)), low, high)
+    values = {name: np.full(n, value) for name, value in _GRADIENT_CONSTANTS.items()}
+    if parameter == "thickness":
+        values["length"] = np.full(n, _THICKNESS_RAMP_LENGTH)
+    if parameter == "color":
+        values["thickness"] = np.full(n, _COLOR_RAMP_WIDTH)
+        start, stop = np.array(_COLOR_RAMP_ENDS)
+        colors = [to_hex(start + (stop - start) * t) for t in ramp]
+    else:
+        values[parameter] = ramp
+        colors = ["#000000"] * n
+    angles, lengths, widths = np.radians(values["orientation"]), values["length"] * spacing, values["thickness"] * spacing
+    ramp_text = "RGB (0.85, 0.2, 0.1) to (0.1, 0.2, 0.85)" if parameter == "color" else f"{low:g} to {high:g}"
+    return _straight_strokes_1d(angles, lengths, widths, colors, spacing, rng,
+                                f"synthetic gradient hatching: {n} strokes whose {parameter} ramps from {ramp_text} "
+                                f"along the path{f' (jitter {jitter:g} steps)' if jitter else ''} (stand-in for "
+                                "Barla 2006, Fig. 6c-e)")
+
+
+def _straight_strokes_1d(angles, lengths, widths, colors, spacing: float, rng, description: str):
+    """One straight stroke per element along the horizontal path, a spacing apart, centres jittered by at most
+    0.02 spacing along and across the path."""
+    n = len(angles)
+    centers = np.column_stack([(np.arange(n) + 0.5) * spacing, np.zeros(n)]) + rng.uniform(-0.02, 0.02, (n, 2)) * spacing
+    elements = [[_stroke(_arc(ell), a, c, w, col)] for ell, a, c, w, col in zip(lengths, angles, centers, widths, colors)]
+    params = dict(position=centers, arc=centers[:, 0], orientation=angles, length=lengths, thickness=widths,
+                  color=list(colors), kind=["hatch"] * n)
+    return _exemplar(elements, params, dimension=1, epsilon=_EPSILON_1D * spacing, path=_horizontal_path(n, spacing),
+                     description=description)
+
+
+def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter=1.5, spacing=1.0,
+                           rng=None) -> StrokePatternExemplar:
+    """Straight strokes whose orientation swings back and forth along the path, gradually (synthetic).
+
+    Stroke ``i`` is turned ``90 + amplitude sin(2 pi i / period)`` degrees from x, plus Gaussian noise of
+    standard deviation ``jitter`` degrees (a hand-drawn wave); length 2.5, pen width 0.08 (in spacings).
+    Unlike a monotone ramp, the pattern is stationary: every neighbourhood recurs, so it can be continued
+    along a path longer than the exemplar (the neighbouring differences are what a synthesis must keep).
+
+    Parameters
+    ----------
+    n_elements : int
+        Number of strokes (>= 2).
+    period : float
+        Wavelength in strokes (>= 2).
+    amplitude, jitter : float
+        Degrees; amplitude in [0, 85], jitter in [0, 10].
     spacing : float
         Designed distance between neighbouring strokes (> 0); ``epsilon = 0.2 * spacing``.
     rng : None, int or numpy.random.Generator
@@ -466,31 +571,20 @@ def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, rng=Non
     StrokePatternExemplar
         One-dimensional, one stroke per element, ``kind="hatch"``.
 
-    Raises
-    ------
-    ValueError
-        On an unknown parameter, a count below 2 or a non-positive spacing.
-
     References
     ----------
-    Barla et al. 2006, Figure 6 c-e (smooth changes of orientation, length and thickness).
+    Barla et al. 2006, Figure 6 c (gradual changes of orientation along a path).
     """
-    if parameter not in _GRADIENT_RANGES:
-        raise ValueError(f"parameter must be one of {sorted(_GRADIENT_RANGES)}, got {parameter!r}")
     n, spacing = _check_1d(n_elements, spacing)
+    period = _between(period, "period", 2.0, 1e6)
+    amplitude = _between(amplitude, "amplitude", 0.0, 85.0)
+    jitter = _between(jitter, "jitter", 0.0, 10.0)
     rng = np.random.default_rng(rng)
-    low, high = _GRADIENT_RANGES[parameter]
-    ramp = low + (high - low) * np.linspace(0.0, 1.0, n)
-    values = {"orientation": np.full(n, 90.0), "length": np.full(n, 2.5), "thickness": np.full(n, PEN_WIDTH)}
-    values[parameter] = ramp
-    angles, lengths, widths = np.radians(values["orientation"]), values["length"] * spacing, values["thickness"] * spacing
-    centers = np.column_stack([(np.arange(n) + 0.5) * spacing, np.zeros(n)]) + rng.uniform(-0.02, 0.02, (n, 2)) * spacing
-    elements = [[_stroke(_arc(ell), a, c, w)] for ell, a, c, w in zip(lengths, angles, centers, widths)]
-    params = dict(position=centers, arc=centers[:, 0], orientation=angles, length=lengths, thickness=widths,
-                  color=["#000000"] * n, kind=["hatch"] * n)
-    return _exemplar(elements, params, dimension=1, epsilon=_EPSILON_1D * spacing, path=_horizontal_path(n, spacing),
-                     description=f"synthetic gradient hatching: {n} strokes whose {parameter} ramps from {low:g} to "
-                                 f"{high:g} along the path (stand-in for Barla 2006, Fig. 6c-e)")
+    angles = np.radians(90.0 + amplitude * np.sin(2.0 * np.pi * np.arange(n) / period) + jitter * rng.standard_normal(n))
+    lengths, widths = np.full(n, 2.5 * spacing), np.full(n, PEN_WIDTH * spacing)
+    return _straight_strokes_1d(angles, lengths, widths, ["#000000"] * n, spacing, rng,
+                                f"synthetic wave hatching: {n} strokes whose orientation swings +-{amplitude:g} deg "
+                                f"with a period of {period:g} strokes (jitter {jitter:g} deg)")
 
 
 def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), rng=None) -> StrokePatternExemplar:
@@ -587,18 +681,69 @@ def _params_2d(centers, angles, lengths, widths, colors, kinds) -> dict:
     return dict(position=centers, orientation=angles, length=lengths, thickness=widths, color=colors, kind=kinds)
 
 
-def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
-    """Straight bars in several directions filling a region (synthetic).
+def _structure(value, allowed: tuple) -> str:
+    if not isinstance(value, str) or value not in allowed:
+        raise ValueError(f"structure must be one of {list(allowed)}, got {value!r}")
+    return value
+
+
+def _patches(centers, width: float, height: float, spacing: float, patch_size: float, n_labels: int,
+             rng) -> np.ndarray:
+    """A label in ``range(n_labels)`` per centre, constant over patches about ``patch_size`` across.
+
+    The patches are the Voronoi cells of a ``round(width / patch_size) x round(height / patch_size)`` grid of
+    patch centres (at least 1 x 1), each jittered uniformly by up to 0.3 of its grid cell. Two patches are
+    adjacent when two of their centres are lattice neighbours (closer than 1.5 ``spacing``); patches are
+    labelled one after the other in a random order, each uniformly among the labels none of its labelled
+    neighbours has, or, when every label is taken, among those its neighbours use least.
+    """
+    nx, ny = max(1, round(width / patch_size)), max(1, round(height / patch_size))
+    cell = np.array([width / nx, height / ny])
+    grid = np.stack(np.meshgrid(np.arange(nx) + 0.5, np.arange(ny) + 0.5), axis=-1).reshape(-1, 2)
+    seeds = (grid + rng.uniform(-0.3, 0.3, grid.shape)) * cell
+    owner = np.argmin(((centers[:, None, :] - seeds[None, :, :]) ** 2).sum(axis=-1), axis=1)
+    i, j = np.nonzero(np.triu(np.hypot(*(centers[:, None, :] - centers[None, :, :]).transpose(2, 0, 1))
+                              < 1.5 * spacing, k=1))
+    crossing = owner[i] != owner[j]
+    adjacent = np.zeros((len(seeds), len(seeds)), dtype=bool)
+    adjacent[owner[i][crossing], owner[j][crossing]] = True
+    adjacent |= adjacent.T
+    labels = np.full(len(seeds), -1)
+    for patch in rng.permutation(len(seeds)):
+        used = np.bincount(labels[adjacent[patch] & (labels >= 0)], minlength=n_labels)
+        free = np.flatnonzero(used == used.min())
+        labels[patch] = free[rng.integers(len(free))]
+    return labels[owner]
+
+
+def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", patch_size=4.0, width=12.0,
+                  height=12.0, rng=None) -> StrokePatternExemplar:
+    """Straight bars in several directions filling a region, aligned in patches (synthetic).
 
     Centres on a hexagonal lattice of spacing 1.25 jittered by up to 0.0625 (about 100 bars in the
-    default 12 x 12 region); each bar is one straight stroke of length 0.9 +- 3 % in a direction drawn
-    at random among ``directions_deg`` (degrees from the x axis), turned by up to 3 degrees.
+    default 12 x 12 region); each bar is one straight stroke of length 0.9 +- 3 % in one of the
+    ``directions_deg`` (degrees from the x axis), turned by up to 3 degrees. Which direction, the rule
+    the synthesis must reproduce (the "complex relations among similar elements" of section 4):
+
+    - ``structure="patches"`` (default): the region is cut into patches about ``patch_size`` across (the
+      Voronoi cells of a jittered grid of patch centres, 3 x 3 patches of about 10 bars in the default
+      region) and all the bars of a patch share its direction; adjacent patches take different directions
+      wherever the directions allow. Neighbouring bars are parallel inside a patch and turn by a whole
+      direction step across a patch border (about 70 % of the neighbour pairs are parallel with patches of
+      4, against 1 / len(directions_deg) for independent directions).
+    - ``structure="random"``: each bar's direction drawn independently and uniformly (the exemplar before
+      issue 19; a shuffle of it is as structured as itself).
+
     ``epsilon = 0.09``: collinear bars facing each other keep a gap of at least 0.19.
 
     Parameters
     ----------
     directions_deg : sequence of float
         Directions the bars may take (at least one).
+    structure : {"patches", "random"}
+        How directions are laid out (above).
+    patch_size : float
+        Size of a patch (> 0), for ``structure="patches"``.
     width, height : float
         Size of the region ``shapely.box(0, 0, width, height)`` (> 0, room for at least 3 bars).
     rng : None, int or numpy.random.Generator
@@ -611,11 +756,11 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), width=12.0, height=12.0,
     Raises
     ------
     ValueError
-        On no or non-finite directions, or a region too small.
+        On no or non-finite directions, an unknown structure, a non-positive patch size, or a region too small.
 
     References
     ----------
-    Barla et al. 2006, Figure 7 a.
+    Barla et al. 2006, Figure 7 a ("bars oriented in multiple directions") and section 4.
     """
     try:
         directions = np.radians(np.asarray(directions_deg, dtype=float).reshape(-1))
@@ -623,31 +768,51 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), width=12.0, height=12.0,
         raise ValueError(f"directions_deg must be a sequence of angles in degrees, got {directions_deg!r}") from None
     if directions.size == 0 or not np.isfinite(directions).all():
         raise ValueError(f"directions_deg needs at least one finite angle, got {directions_deg!r}")
+    structure = _structure(structure, ("patches", "random"))
+    patch_size = positive_number(patch_size, "patch_size")
     width, height, region = _region(width, height)
     rng = np.random.default_rng(rng)
     centers, _ = _region_centers(width, height, 1.25, rng)
     n = len(centers)
-    angles = rng.choice(directions, n) + np.radians(rng.uniform(-3.0, 3.0, n))
+    if structure == "patches":
+        chosen = directions[_patches(centers, width, height, 1.25, patch_size, directions.size, rng)]
+    else:
+        chosen = rng.choice(directions, n)
+    angles = chosen + np.radians(rng.uniform(-3.0, 3.0, n))
     lengths = 0.9 * rng.uniform(0.97, 1.03, n)
     elements = [[_stroke(_arc(ell), a, c, PEN_WIDTH)] for c, a, ell in zip(centers, angles, lengths)]
     params = _params_2d(centers, angles, lengths, np.full(n, PEN_WIDTH), ["#000000"] * n, ["bar"] * n)
+    layout = f"aligned in patches about {patch_size:g} across" if structure == "patches" else "drawn independently"
     return _exemplar(elements, params, dimension=2, epsilon=0.09, region=region,
-                     description=f"synthetic bars: {n} straight strokes in {directions.size} directions "
+                     description=f"synthetic bars: {n} straight strokes in {directions.size} directions, {layout} "
                                  "(stand-in for Barla 2006, Fig. 7a)")
 
 
-def drops_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
-    """Water drops mixed with short hatches in a region (synthetic).
+def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
+    """Water drops among short hatches in a region, each drop ringed by hatches (synthetic).
 
-    Centres on a hexagonal lattice of spacing 1.25 jittered by up to 0.0625. Each site is, with equal
-    chances, a drop (``kind="drop"``: a closed teardrop outline 0.7 long and 0.45 wide, tip up, tilted up
-    to 12 degrees, with a 40 % chance of a small highlight arc inside it, then a two-stroke element) or a
-    hatch (``kind="hatch"``: a straight stroke 0.5 long at 30 +- 5 degrees). A drop's ``orientation`` is
-    its symmetry axis, its ``length`` the outline's extent along it. The highlight nests inside the drop's
-    box (proximity 0); ``epsilon = 0.15``.
+    Centres on a hexagonal lattice of spacing 1.25 jittered by up to 0.0625. Each site is a drop
+    (``kind="drop"``: a closed teardrop outline 0.7 long and 0.45 wide, tip up, tilted up to 12 degrees,
+    with a 40 % chance of a small highlight arc inside it, then a two-stroke element) or a hatch
+    (``kind="hatch"``: a straight stroke 0.5 long at 30 +- 5 degrees). Which sites are drops, the rule the
+    synthesis must reproduce:
+
+    - ``structure="ringed"`` (default): the lattice's sites fall in three classes such that no two
+      neighbouring sites share a class (a site's column in half spacings, modulo 3); one class, drawn at
+      random, carries the drops, the other two the hatches. One site in three is a drop, no two drops are
+      neighbours, every drop is ringed by six hatches and every hatch has three drop and three hatch
+      neighbours: 1/3 of the neighbour pairs join two elements of the same kind, against 5/9 for the same
+      shares drawn independently.
+    - ``structure="random"``: each site a drop with probability 1/2, independently (the exemplar before
+      issue 19).
+
+    A drop's ``orientation`` is its symmetry axis, its ``length`` the outline's extent along it. The
+    highlight nests inside the drop's box (proximity 0); ``epsilon = 0.15``.
 
     Parameters
     ----------
+    structure : {"ringed", "random"}
+        How the kinds are laid out (above).
     width, height : float
         Size of the region (> 0, room for at least 3 elements).
     rng : None, int or numpy.random.Generator
@@ -660,17 +825,21 @@ def drops_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatternExempla
     Raises
     ------
     ValueError
-        On a region too small.
+        On an unknown structure or a region too small.
 
     References
     ----------
-    Barla et al. 2006, Figure 7 b.
+    Barla et al. 2006, Figure 7 b ("elements of various nature (water drops, hatches)") and section 4.
     """
+    structure = _structure(structure, ("ringed", "random"))
     width, height, region = _region(width, height)
     rng = np.random.default_rng(rng)
-    centers, _ = _region_centers(width, height, 1.25, rng)
+    centers, cells = _region_centers(width, height, 1.25, rng)
     n = len(centers)
-    is_drop = rng.random(n) < 0.5
+    if structure == "ringed":
+        is_drop = cells[:, 0] % 3 == rng.integers(3)
+    else:
+        is_drop = rng.random(n) < 0.5
     angles = np.where(is_drop, np.pi / 2.0 + np.radians(rng.uniform(-12.0, 12.0, n)),
                       np.radians(30.0 + rng.uniform(-5.0, 5.0, n)))
     lengths = np.where(is_drop, 0.7, 0.5)
@@ -685,27 +854,42 @@ def drops_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatternExempla
         elements.append(element)
     params = _params_2d(centers, angles, lengths, np.full(n, PEN_WIDTH), ["#000000"] * n,
                         np.where(is_drop, "drop", "hatch"))
+    layout = ", each drop ringed by hatches" if structure == "ringed" else ", kinds drawn independently"
     return _exemplar(elements, params, dimension=2, epsilon=0.15, region=region,
                      description=f"synthetic drops and hatches: {int(is_drop.sum())} water drops and "
-                                 f"{int(n - is_drop.sum())} short hatches (stand-in for Barla 2006, Fig. 7b)")
+                                 f"{int(n - is_drop.sum())} short hatches{layout} (stand-in for Barla 2006, Fig. 7b)")
 
 
-def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), width=12.0, height=12.0,
-                     rng=None) -> StrokePatternExemplar:
-    """Small flowers, each drawn with five petal loops and a heart, in a region (synthetic).
+def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="bands", band_rows=2, width=12.0,
+                     height=12.0, rng=None) -> StrokePatternExemplar:
+    """Small flowers, each drawn with five petal loops and a heart, in colour bands (synthetic).
 
     Centres on a hexagonal lattice of spacing 1.3 jittered by up to 0.065 (about 90 flowers in the
     default region). A flower of radius 0.28 +- 5 % is five petal loops (lobes that overlap at the heart,
     turned by up to 4 degrees from a regular star whose first petal points in a random direction) and a
-    short arc for its heart, all in one colour drawn at random from ``colors``. ``orientation`` is the
-    designed direction of the first petal (modulo pi), ``length`` the flower's designed diameter.
-    ``epsilon = 0.32``: Barla's greedy clustering, which refits the merged box after each merge, joins
-    the petals at 0.54 petal length at worst.
+    short arc for its heart, all in one colour from ``colors``. Which colour, the rule the synthesis must
+    reproduce:
+
+    - ``structure="bands"`` (default): the lattice rows, counted from the top, form horizontal bands of
+      ``band_rows`` rows, and the bands take the colours in turn, starting at a random one. A flower has
+      two same-colour neighbours on its row and, with two rows per band, two more on the other row of its
+      band: 2/3 of the neighbour pairs share a colour, against 1 / len(colors) for colours drawn
+      independently.
+    - ``structure="random"``: each flower's colour drawn independently and uniformly (the exemplar before
+      issue 19).
+
+    ``orientation`` is the designed direction of the first petal (modulo pi), ``length`` the flower's
+    designed diameter. ``epsilon = 0.32``: Barla's greedy clustering, which refits the merged box after each
+    merge, joins the petals at 0.54 petal length at worst.
 
     Parameters
     ----------
     colors : sequence of str
         At least one SVG colour.
+    structure : {"bands", "random"}
+        How the colours are laid out (above).
+    band_rows : int
+        Rows per colour band (>= 1), for ``structure="bands"``.
     width, height : float
         Size of the region (> 0, room for at least 3 flowers).
     rng : None, int or numpy.random.Generator
@@ -718,26 +902,34 @@ def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), width=12.0, he
     Raises
     ------
     ValueError
-        On no colours or a region too small.
+        On no colours, an unknown structure, a band of fewer than one row, or a region too small.
 
     References
     ----------
-    Barla et al. 2006, Figure 7 c and section 2.2 ("a small figure (think of a flower) is often drawn
-    using a small number of individual strokes").
+    Barla et al. 2006, Figure 7 c ("small figures like flowers of different colors") and section 2.2 ("a
+    small figure (think of a flower) is often drawn using a small number of individual strokes").
     """
     colors = _colors(colors, "colors", 1)
+    structure = _structure(structure, ("bands", "random"))
+    band_rows = _count(band_rows, "band_rows", 1)
     width, height, region = _region(width, height)
     rng = np.random.default_rng(rng)
-    centers, _ = _region_centers(width, height, 1.3, rng)
+    centers, cells = _region_centers(width, height, 1.3, rng)
     n = len(centers)
     angles = rng.uniform(0.0, 2.0 * np.pi, n)
     sizes = 0.28 * rng.uniform(0.95, 1.05, n)
-    palette = [colors[k] for k in rng.integers(0, len(colors), n)]
+    if structure == "bands":
+        band = (cells[:, 1].max() - cells[:, 1]) // band_rows
+        palette = [colors[k] for k in (band + rng.integers(len(colors))) % len(colors)]
+    else:
+        palette = [colors[k] for k in rng.integers(0, len(colors), n)]
     elements = [_flower(c, a, size, color, rng) for c, a, size, color in zip(centers, angles, sizes, palette)]
     params = _params_2d(centers, angles, 2.0 * sizes, np.full(n, PEN_WIDTH / 2.0), palette, ["flower"] * n)
+    layout = (f"in bands of {band_rows} row{'s' if band_rows > 1 else ''}" if structure == "bands"
+              else "drawn independently")
     return _exemplar(elements, params, dimension=2, epsilon=0.32, region=region,
                      description=f"synthetic flowers: {n} flowers of five petal loops and a heart in "
-                                 f"{len(colors)} colours (stand-in for Barla 2006, Fig. 7c)")
+                                 f"{len(colors)} colours {layout} (stand-in for Barla 2006, Fig. 7c)")
 
 
 def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
@@ -745,7 +937,11 @@ def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatter
 
     Centres on a square lattice of spacing 1.2 jittered by up to 0.06; sites of even parity carry an
     ``"A"`` hatch (three parallel strokes 0.55 long, 0.09 apart, at 30 +- 4 degrees, ends jittered by up
-    to 0.03), the others a ``"B"`` hatch (one stroke 1.0 long at 120 +- 4 degrees). ``epsilon = 0.25``.
+    to 0.03), the others a ``"B"`` hatch (one stroke 1.0 long at 120 +- 4 degrees). The rule the synthesis
+    must reproduce: a site's four neighbours along the rows and columns are all of the other kind (its
+    diagonal neighbours of its own); on the unskewed Delaunay graph, which keeps one diagonal per square,
+    2/3 of the neighbour pairs join an A and a B hatch, against 1/2 for kinds drawn independently.
+    ``epsilon = 0.25``.
 
     Parameters
     ----------
@@ -765,13 +961,13 @@ def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatter
 
     References
     ----------
-    Barla et al. 2006, Figure 7 d.
+    Barla et al. 2006, Figure 7 d ("alternating two different kinds of elements") and section 4.
     """
     width, height, region = _region(width, height)
     rng = np.random.default_rng(rng)
-    centers, parity = _region_centers(width, height, 1.2, rng, hexagonal=False)
+    centers, cells = _region_centers(width, height, 1.2, rng, hexagonal=False)
     n = len(centers)
-    is_a = parity == 0
+    is_a = (cells[:, 0] + cells[:, 1]) % 2 == 0
     angles = np.radians(np.where(is_a, 30.0, 120.0) + rng.uniform(-4.0, 4.0, n))
     lengths = np.where(is_a, 0.55, 1.0)
     elements = []

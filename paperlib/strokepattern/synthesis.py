@@ -5,19 +5,32 @@
    (Voronoi cells clipped to the region, :func:`paperlib.geometry.lloyd_relaxation`). Neighbours: the chain
    (1D) or the unskewed Delaunay edges (2D), as in the analysis.
 2. **Growth** (3.2): from the seed nearest the middle of the path or the centroid of the region, outward:
-   by the number of graph hops from it, ties by distance.
+   by the number of graph hops from it, ties by distance. The start and its k-ring are seeded with the
+   reference's centre element and its k-ring (``start="centre"``, :func:`seed_patch`, Efros and Leung's seed
+   patch; the paper does not say what the start receives).
 3. **Matching** (3.1): the k-ring neighbourhood of each seed (every element within k hops) is compared with
    the k-ring neighbourhood of every reference element: closest elements are paired (mutual nearest
-   neighbours in position, Figure 3), the five perceptual measures are averaged over the pairs, and the
-   neighbourhood matches if ``col and (shape or (par and ov and sup))``. Only known (already synthesised)
-   elements take part: the average runs over the pairs they form, so a partial neighbourhood is normalised
-   by its known count (section 3.2). One matching reference element is chosen at random and its strokes are
+   neighbours in position, Figure 3), the five perceptual measures are averaged, and the neighbourhood
+   matches if ``col and (shape or (par and ov and sup))``. Only known (already synthesised) elements are
+   measured (section 3.2). The paper as written (``matching="paper"``) sums the measures over the pairs and
+   divides by the number of known elements; by default (``matching="coverage"``) a pair further apart than
+   half the reference's median neighbour distance is no pair, and each known element left unpaired is charged
+   its threshold: a reference neighbourhood must cover the known part of the target's, as an Efros-Leung window
+   must lie inside the sample.
+4. **Choice** (3.1): among the matching neighbourhoods (the set Omega), the paper picks uniformly
+   (``choice="random"``); by default (``choice="close"``) the pick is uniform among those within a tenth of a
+   threshold of the best rule score, Efros and Leung's rule. The chosen reference element's strokes are
    copied to the seed.
-4. **Fallback** (not in the paper, which notes that "it can happen that no pairing is found" but that
+5. **Fallback** (not in the paper, which notes that "it can happen that no pairing is found" but that
    Lloyd's even distribution keeps it rare): when no reference neighbourhood matches, the one with the
    smallest rule score (:func:`.measures.rule_score`, the fuzzy version of the rule) is taken; elements with
-   no known neighbour (the first one) take a uniformly random reference element. ``Synthesis.matched`` says
-   which elements came from the matching set.
+   no known neighbour take a uniformly random reference element. ``Synthesis.matched`` says which elements
+   came from the matching set, ``Synthesis.fallback`` which took the fallback.
+
+Why the defaults depart from the paper's rules is measured in the notebook ``barla2006_fig06_1d_results``: with
+the paper's thresholds Omega spans several elements of a ramp, and a uniform draw in it (with a random start)
+loses the ramps of Figure 6 c-e and makes 1D syntheses jump (a third of consecutive elements of a wave turn by
+more than 15 degrees, against 3 % in the reference).
 
 In 1D each element has a local frame, the tangent of its path: neighbour offsets and orientations are
 measured in it, and a copied element is turned by the difference between the target's and the reference's
@@ -42,7 +55,8 @@ from scipy import sparse
 from scipy.sparse.csgraph import breadth_first_order
 
 from ..geometry import Element, Stroke, lloyd_relaxation
-from ._kernels import grow
+from .._checks import positive_number
+from ._kernels import BEST, CLOSE, RANDOM, grow
 from .analysis import (
     PatternAnalysis,
     _as_path,
@@ -53,8 +67,8 @@ from .analysis import (
 )
 from .measures import Thresholds, measure_tables
 
-__all__ = ["Seeds", "Synthesis", "as_region", "growth_order", "ring_neighbourhoods", "seeds_1d", "seeds_2d",
-           "synthesize", "target_count"]
+__all__ = ["Seeds", "Synthesis", "as_region", "growth_order", "pairing_gate", "reference_centre", "ring_neighbourhoods",
+           "seed_patch", "seeds_1d", "seeds_2d", "synthesize", "target_count"]
 
 #: Lloyd iterations by default. From a stratified random start in 1D the spacing then varies by about 1 %
 #: (std / mean; Lloyd in 1D is a diffusion whose longest wavelengths decay slowly); in 2D, from a uniform start,
@@ -215,6 +229,44 @@ def _start(seeds: Seeds, target, dimension: int) -> int:
     return int(np.argmin(np.hypot(*(seeds.positions - centre).T)))
 
 
+def reference_centre(analysis: PatternAnalysis) -> int:
+    """The reference element nearest the middle of its path (1D) or the mean of its centres (2D)."""
+    if analysis.dimension == 1:
+        return int(np.argmin(np.abs(analysis.arc - (analysis.arc.min() + analysis.arc.max()) / 2.0)))
+    return int(np.argmin(np.hypot(*(analysis.positions - analysis.positions.mean(axis=0)).T)))
+
+
+def seed_patch(target_graph, start: int, reference_graph, centre: int, gate: float) -> np.ndarray:
+    """The reference elements the start's k-ring is seeded with (``start="centre"``), -1 elsewhere.
+
+    The start copies the reference's centre element, and each element of its k-ring the element of the centre's
+    k-ring it pairs with (mutual nearest offsets, no further apart than ``gate``): Efros and Leung's seed patch,
+    a piece of the reference copied whole, so that growth begins from a neighbourhood, not from one element
+    whose lone neighbour matches several places of the reference equally well.
+    """
+    (tar_pointers, tar_neighbours, tar_offsets), (ref_pointers, ref_neighbours, ref_offsets) = target_graph, \
+        reference_graph
+    initial = np.full(len(tar_pointers) - 1, -1, dtype=np.int64)
+    initial[start] = centre
+    tar_span = slice(tar_pointers[start], tar_pointers[start + 1])
+    ref_span = slice(ref_pointers[centre], ref_pointers[centre + 1])
+    if tar_span.start == tar_span.stop or ref_span.start == ref_span.stop:
+        return initial
+    distances = np.hypot(*(tar_offsets[tar_span][:, None, :] - ref_offsets[ref_span][None, :, :]).transpose(2, 0, 1))
+    nearest_ref, nearest_tar = distances.argmin(axis=1), distances.argmin(axis=0)
+    for k, m in enumerate(nearest_ref):
+        if nearest_tar[m] == k and distances[k, m] <= gate:
+            initial[tar_neighbours[tar_span][k]] = ref_neighbours[ref_span][m]
+    return initial
+
+
+def pairing_gate(analysis: PatternAnalysis) -> float:
+    """Half the median distance between neighbouring reference elements: the furthest two paired neighbours
+    may lie apart under ``matching="coverage"`` (closer to another slot than to their own)."""
+    ends = analysis.positions[analysis.edges]
+    return 0.5 * float(np.median(np.hypot(*(ends[:, 0] - ends[:, 1]).T)))
+
+
 # --------------------------------------------------------------------------- synthesis
 
 
@@ -237,11 +289,15 @@ class Synthesis:
     order : ndarray of int, shape (n,)
         The growth order.
     matched : ndarray of bool, shape (n,)
-        True where the choice came from matching neighbourhoods, False for the fallback (or no known neighbour).
+        True where the choice came from matching neighbourhoods; False for the fallback, the seed patch, or an
+        element with no known neighbour.
     n_candidates : ndarray of int, shape (n,)
         How many reference neighbourhoods matched.
     score : ndarray, shape (n,)
-        Rule score of the chosen reference neighbourhood (< 1 matches; NaN without known neighbours).
+        Rule score of the chosen reference neighbourhood (< 1 matches; NaN for seeded elements and those without
+        known neighbours).
+    seeded : ndarray of bool, shape (n,)
+        The seed patch: elements copied with the start before growth (``start="centre"``).
     dimension : int
     rings : int
     target : ndarray or shapely geometry
@@ -257,12 +313,18 @@ class Synthesis:
     matched: np.ndarray
     n_candidates: np.ndarray
     score: np.ndarray
+    seeded: np.ndarray
     dimension: int
     rings: int
     target: object
 
     def __len__(self) -> int:
         return len(self.elements)
+
+    @property
+    def fallback(self) -> np.ndarray:
+        """Elements whose neighbourhood matched no reference neighbourhood (the smallest rule score was taken)."""
+        return ~self.matched & ~np.isnan(self.score)
 
     @property
     def strokes(self) -> list:
@@ -284,8 +346,26 @@ def _graph_arrays(positions, frames, edges, rings):
     return pointers, neighbours, _local_offsets(positions, frames, pointers, neighbours)
 
 
+#: Choice rules among the matching reference neighbourhoods, kernel codes.
+CHOICES = {"random": RANDOM, "best": BEST, "close": CLOSE}
+#: Partial-neighbourhood rules (section 3.2): the paper's as written, and ours (see :func:`synthesize`).
+MATCHINGS = ("coverage", "paper")
+#: Starting element rules.
+STARTS = ("centre", "random")
+#: Default ``tolerance`` of ``choice="close"``, in rule-score units (fractions of the thresholds): candidates
+#: within a tenth of a threshold of the best, Efros and Leung's epsilon = 0.1.
+CLOSE_TOLERANCE = 0.1
+
+
+def _option(value, allowed, name: str):
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {sorted(allowed)}, got {value!r}")
+    return value
+
+
 def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | None = None,
-               thresholds: Thresholds | None = None, choice: str = "random", iterations: int = LLOYD_ITERATIONS,
+               thresholds: Thresholds | None = None, choice: str = "close", tolerance: float = CLOSE_TOLERANCE,
+               matching: str = "coverage", start: str = "centre", iterations: int = LLOYD_ITERATIONS,
                rng=None) -> Synthesis:
     """Synthesise a pattern like the analysed reference along a path (1D) or in a region (2D) (Algorithm 1).
 
@@ -301,9 +381,27 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
         Number of elements; default N_tar = N_ref A_tar / A_ref (:func:`target_count`).
     thresholds : Thresholds, optional
         The perceptual thresholds; default the paper's.
-    choice : {"random", "best"}
-        "random" (the paper): a uniform choice among the matching reference neighbourhoods. "best": the one
-        with the smallest rule score (an option, to show what the random choice trades for variety).
+    choice : {"close", "random", "best"}
+        Which of the matching reference neighbourhoods (the set Omega of section 3.1) is copied. "random" (the
+        paper as written): a uniform choice in Omega. "close" (default): a uniform choice among the members of
+        Omega whose rule score is within ``tolerance`` of the best, the rule of Efros and Leung [2] whose
+        method the paper follows; with the paper's thresholds Omega spans several elements of a ramp (about
+        +-3 along Fig. 6c's orientation ramp), and a uniform draw in it makes the copied position a random walk
+        whose steps are as large as the ramp's neighbouring differences times 3. "best": the smallest score.
+    tolerance : float
+        For ``choice="close"``, in units of the thresholds (rule-score units), >= 0.
+    matching : {"coverage", "paper"}
+        How a partial neighbourhood is scored (section 3.2). "paper": the measures summed over the mutual
+        pairs and divided by the number of known elements, as written. "coverage" (default): pairs further
+        apart than half the reference's median neighbour distance do not count, and each known element left
+        without a partner is charged its threshold, so that a reference neighbourhood cut by the exemplar's
+        border cannot match on the one or two pairs it forms.
+    start : {"centre", "random"}
+        How growth begins (the paper does not say what the centre element of Algorithm 1 receives). "centre"
+        (default): the target's centre element and its k-ring copy the reference's centre element and its
+        k-ring (:func:`seed_patch`, Efros and Leung's seed patch), so that a synthesis as long as the exemplar
+        reaches both ends of a ramp (Figure 6 c-e). "random": the centre element copies a uniformly random
+        reference element.
     iterations : int
         Lloyd iterations for the seeds.
     rng : None, int or numpy.random.Generator
@@ -316,19 +414,23 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     Raises
     ------
     ValueError
-        A target path of zero length, a region of zero area, a 2D target too small for 3 seeds, rings < 1.
+        A target path of zero length, a region of zero area, a 2D target too small for 3 seeds, rings < 1,
+        an unknown choice, matching or start, a negative tolerance.
 
     References
     ----------
-    Barla et al. 2006, sections 3.1-3.2 and Algorithm 1.
+    Barla et al. 2006, sections 3.1-3.2 and Algorithm 1; Efros and Leung 1999, section 2.1 (the choice among
+    the patches within (1 + epsilon) of the best).
     """
     if not isinstance(analysis, PatternAnalysis):
         raise ValueError(f"analysis must be a PatternAnalysis from analyze(), got {type(analysis).__name__}")
     thresholds = Thresholds() if thresholds is None else thresholds
     if not isinstance(thresholds, Thresholds):
         raise ValueError(f"thresholds must be a Thresholds, got {type(thresholds).__name__}")
-    if choice not in ("random", "best"):
-        raise ValueError(f"choice must be 'random' or 'best', got {choice!r}")
+    mode = CHOICES[_option(choice, CHOICES, "choice")]
+    tolerance = positive_number(tolerance, "tolerance", allow_zero=True)
+    coverage = _option(matching, MATCHINGS, "matching") == "coverage"
+    seeded_start = _option(start, STARTS, "start") == "centre"
     dimension = analysis.dimension
     shape, _ = _extent(target, dimension)
     count = target_count(analysis, shape) if n is None else _count(n)
@@ -336,15 +438,20 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     seed_rng, choice_rng = rng.spawn(2)
     make_seeds = seeds_1d if dimension == 1 else seeds_2d
     seeds = make_seeds(shape, count, iterations=iterations, rng=seed_rng)
-    order = growth_order(seeds.positions, seeds.edges, _start(seeds, shape, dimension))
+    start_element = _start(seeds, shape, dimension)
+    order = growth_order(seeds.positions, seeds.edges, start_element)
     tables = measure_tables(analysis.boxes.half_lengths, analysis.boxes.angles - analysis.frames, analysis.colors)
     sigmas = thresholds.vector(analysis.mean_length)
-    source, matched, n_candidates, score = grow(
-        order, *_graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings),
-        *_graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings),
-        tables, sigmas, choice_rng.random(count), choice == "best")
+    target_graph = _graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings)
+    reference_graph = _graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings)
+    gate = pairing_gate(analysis)
+    initial = (seed_patch(target_graph, start_element, reference_graph, reference_centre(analysis), gate)
+               if seeded_start else np.full(count, -1, dtype=np.int64))
+    source, matched, n_candidates, score = grow(order, *target_graph, *reference_graph, tables, sigmas,
+                                                choice_rng.random(count), initial, mode, tolerance, gate ** 2,
+                                                coverage)
     elements = tuple(place_element(analysis.elements[s], analysis.positions[s], frame - analysis.frames[s], position)
                      for s, frame, position in zip(source, seeds.frames, seeds.positions))
     return Synthesis(elements=elements, positions=seeds.positions, frames=seeds.frames, edges=seeds.edges,
                      source=source, order=order, matched=matched, n_candidates=n_candidates, score=score,
-                     dimension=dimension, rings=int(rings), target=shape)
+                     seeded=initial >= 0, dimension=dimension, rings=int(rings), target=shape)

@@ -20,7 +20,7 @@ synthesis (:func:`paperlib.strokepattern.synthesize` with ``rings`` and ``choice
 parameter exchange (:func:`~paperlib.strokepattern.exchange_parameters`) when the variation ``amount`` is
 above 0 and by the position variation (:func:`~paperlib.strokepattern.vary_positions`) when checked; it is
 drawn with the target outline, the elements whose neighbourhood found no match (the fallback) marked by a red
-cross. The status line gives the elements, the fraction matched and the seconds of each step.
+cross. The status line gives the elements, the fallback fraction and the seconds of each step.
 
 Design
 ------
@@ -92,6 +92,7 @@ from paperlib.datasets.strokepatterns import (
     jittered_hatching_exemplar,
     sketchy_hatching_exemplar,
     two_hatchings_exemplar,
+    wave_hatching_exemplar,
 )
 from paperlib.strokepattern import (
     analyze,
@@ -114,6 +115,8 @@ EXEMPLARS = {
     "gradient_orientation": partial(gradient_hatching_exemplar, "orientation"),
     "gradient_length": partial(gradient_hatching_exemplar, "length"),
     "gradient_thickness": partial(gradient_hatching_exemplar, "thickness"),
+    "gradient_color": partial(gradient_hatching_exemplar, "color"),
+    "wave": wave_hatching_exemplar,
     "alternating_color": alternating_color_exemplar,
     "bars": bars_exemplar,
     "drops": drops_exemplar,
@@ -367,7 +370,8 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         self.amount = w.FloatSlider(value=amount, min=0.0, max=1.0, step=0.05, description="variation amount",
                                     continuous_update=False, style=wide)
         self.vary = w.Checkbox(value=vary, description="position variation (sec. 3.3)", indent=False)
-        self.choice = w.ToggleButtons(options=[("random (paper)", "random"), ("best", "best")], value=choice,
+        self.choice = w.ToggleButtons(options=[("close to best", "close"), ("random (paper)", "random"), ("best", "best")],
+                                      value=choice,
                                       description="choice", style=wide)
         self.seed = w.BoundedIntText(value=seed, min=0, max=2**31 - 1, description="synthesis seed", style=wide,
                                      layout=w.Layout(width="170px"))
@@ -660,9 +664,9 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         return None if self.analysis is None else len(self.analysis)
 
     @property
-    def matched_fraction(self) -> float | None:
-        """Fraction of the synthesized elements chosen by neighbourhood matching (not the fallback)."""
-        return None if self.synthesis is None else float(np.mean(self.synthesis.matched))
+    def fallback_fraction(self) -> float | None:
+        """Fraction of the synthesized elements whose neighbourhood matched no reference one (the fallback)."""
+        return None if self.synthesis is None else float(np.mean(self.synthesis.fallback))
 
     @property
     def stroke_hash(self) -> str | None:
@@ -692,7 +696,7 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
             stale = ("" if self._synthesis_analysis is self.analysis else
                      f" (made at epsilon {self.synthesis_epsilon:.3g}: press synthesize)")
             lines.append(f"synthesis ({self.target_label}): {len(synthesis)} elements, "
-                         f"{self.matched_fraction:.0%} matched, {synthesis.rings} rings, choice {self.choice.value}, "
+                         f"{self.fallback_fraction:.0%} fallback, {synthesis.rings} rings, choice {self.choice.value}, "
                          f"seed {int(self.seed.value)}" + "".join(f", {e}" for e in extra if e) + stale)
         else:
             lines.append("synthesis: none")
@@ -741,11 +745,11 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         for outline in outlines:
             ax.plot(*outline.T, "--", color="0.6", lw=0.8)
         plot_strokes(synthesis.elements, ax)
-        fallback = ~np.asarray(synthesis.matched)
+        fallback = np.asarray(synthesis.fallback)
         if fallback.any():
             ax.plot(*synthesis.positions[fallback].T, "x", color="#d62728", ms=4, mew=1)
-        ax.set_title(f"synthesis ({self.target_label}): {len(synthesis)} elements, {self.matched_fraction:.0%} "
-                     f"matched, k = {synthesis.rings}", fontsize=10)
+        ax.set_title(f"synthesis ({self.target_label}): {len(synthesis)} elements, {self.fallback_fraction:.0%} "
+                     f"fallback, k = {synthesis.rings}", fontsize=10)
 
 
 # ---------------------------------------------------------------------------- factory
@@ -772,7 +776,7 @@ def _check_real(value, name: str, low: float, high: float | None = None, *, open
 
 def strokepattern_explorer(exemplar: str = "sketchy_hatching", *, exemplar_seed: int = 0, epsilon: float | None = None,
                            contour: bool = False, rings: int = 2, amount: float = 0.0, vary: bool = False,
-                           choice: str = "random", seed: int = 0, target: str | None = None, figsize=(11, 4.5),
+                           choice: str = "close", seed: int = 0, target: str | None = None, figsize=(11, 4.5),
                            dpi: int = 80, canvas_size=(420, 240)) -> StrokePatternExplorer:
     """An interactive explorer of Barla 2006's stroke pattern analysis and synthesis.
 
@@ -798,8 +802,9 @@ def strokepattern_explorer(exemplar: str = "sketchy_hatching", *, exemplar_seed:
         Parameter-exchange amount in [0, 1] (section 3.3; 0: none).
     vary : bool
         Apply the position variation (section 3.3).
-    choice : {"random", "best"}
-        Among the matching reference neighbourhoods: a random one (the paper) or the best scored.
+    choice : {"close", "random", "best"}
+        Among the matching reference neighbourhoods: a random one within a tenth of a threshold of the best
+        (default, Efros and Leung's rule), a random one (the paper) or the best scored.
     seed : int
         Seed of the synthesis (>= 0); same seed, same strokes.
     target : str, optional
@@ -833,8 +838,8 @@ def strokepattern_explorer(exemplar: str = "sketchy_hatching", *, exemplar_seed:
     amount = _check_real(amount, "amount", 0.0, 1.0)
     if epsilon is not None:
         epsilon = _check_real(epsilon, "epsilon", 0.0, open_low=True)
-    if choice not in ("random", "best"):
-        raise ValueError(f"choice must be 'random' or 'best', got {choice!r}")
+    if choice not in ("close", "random", "best"):
+        raise ValueError(f"choice must be 'close', 'random' or 'best', got {choice!r}")
     for name, flag in (("contour", contour), ("vary", vary)):
         if not isinstance(flag, (bool, np.bool_)):
             raise ValueError(f"{name} must be a bool, got {flag!r}")
