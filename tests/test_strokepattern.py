@@ -26,7 +26,7 @@ from paperlib.strokepattern import (
     vary_positions,
 )
 from paperlib.strokepattern._kernels import BEST, CLOSE, RANDOM, grow, grow_reference
-from paperlib.strokepattern.synthesis import _graph_arrays, pairing_gate, seed_patch
+from paperlib.strokepattern.synthesis import _graph_arrays, pairing_gate, _seed_patch
 
 
 def segment(a, b, width=0.05, color="#000000"):
@@ -260,7 +260,7 @@ def test_kernel_matches_python_reference():
     for rings in (1, 2):
         target_graph = _graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings)
         reference_graph = _graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings)
-        patch = seed_patch(target_graph, order[0], reference_graph, 5, pairing_gate(analysis))
+        patch = _seed_patch(target_graph, order[0], reference_graph, 5, pairing_gate(analysis))
         free = np.full(40, -1)
         for mode, initial, coverage in ((RANDOM, free, False), (BEST, patch, True), (CLOSE, patch, True),
                                         (CLOSE, free, False)):

@@ -140,3 +140,16 @@ def test_neighbour_differences_fold_axes():
     assert differences["length"][0] == 2.0
     with pytest.raises(TypeError):
         element_parameters([], [])
+
+
+def test_bad_inputs_name_the_parameter():
+    with pytest.raises(ValueError, match="source"):
+        longest_copy_run([[1, 2]])
+    with pytest.raises(ValueError, match="source"):
+        alternation_length([0.5, 1.5])
+    with pytest.raises(ValueError, match="alpha"):
+        ks_critical_value(5, 5, alpha=2.0)
+    with pytest.raises(ValueError, match="parameters lacks"):
+        neighbour_differences({"orientation": np.zeros(2)}, [(0, 1)])
+    with pytest.raises(TypeError, match="PatternAnalysis"):
+        compare_continuity("not an analysis", None)

@@ -80,6 +80,9 @@ def neighbour_differences(parameters: dict, edges, resolution: dict | None = Non
 
     With ``resolution`` (per parameter), differences are floored to multiples of it.
     """
+    missing = set(PARAMETERS) - set(parameters)
+    if missing:
+        raise ValueError(f"parameters lacks {sorted(missing)}: pass element_parameters(...)")
     edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     i, j = edges[:, 0], edges[:, 1]
     turn = np.mod(parameters["orientation"][i] - parameters["orientation"][j], np.pi)
@@ -106,12 +109,22 @@ def ks_critical_value(n: int, m: int, alpha: float = KS_ALPHA) -> float:
     """Smirnov's asymptotic critical value of the two-sample KS statistic, ``c(alpha) sqrt((n + m) / (n m))``."""
     if n < 1 or m < 1:
         raise ValueError(f"both samples need at least one value, got sizes {n} and {m}")
+    if not 0.0 < alpha < 1.0:
+        raise ValueError(f"alpha must be in (0, 1), got {alpha!r}")
     return float(np.sqrt(-np.log(alpha / 2.0) / 2.0) * np.sqrt((n + m) / (n * m)))
+
+
+def _sources(source) -> np.ndarray:
+    source = np.asarray(source)
+    if source.ndim != 1 or (source.size and not np.issubdtype(source.dtype, np.integer)):
+        raise ValueError(f"source must be a 1D integer array of reference indices, got {source.dtype} of shape "
+                         f"{source.shape}")
+    return source
 
 
 def longest_copy_run(source) -> int:
     """The longest run of consecutive elements (in chain order) that copy the same reference element."""
-    source = np.asarray(source).reshape(-1)
+    source = _sources(source)
     if len(source) == 0:
         return 0
     breaks = np.flatnonzero(np.diff(source) != 0)
@@ -126,7 +139,7 @@ def alternation_length(source) -> int:
     the oscillation of a synthesis stuck between a reference element and whatever follows it. 0 when no element
     recurs two positions later.
     """
-    source = np.asarray(source).reshape(-1)
+    source = _sources(source)
     best = 0
     for parity in (0, 1):
         every_other = source[parity::2]

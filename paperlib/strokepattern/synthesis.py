@@ -6,7 +6,7 @@
    (1D) or the unskewed Delaunay edges (2D), as in the analysis.
 2. **Growth** (3.2): from the seed nearest the middle of the path or the centroid of the region, outward:
    by the number of graph hops from it, ties by distance. The start and its k-ring are seeded with the
-   reference's centre element and its k-ring (``start="centre"``, :func:`seed_patch`, Efros and Leung's seed
+   reference's centre element and its k-ring (``start="centre"``, :func:`_seed_patch`, Efros and Leung's seed
    patch; the paper does not say what the start receives).
 3. **Matching** (3.1): the k-ring neighbourhood of each seed (every element within k hops) is compared with
    the k-ring neighbourhood of every reference element: closest elements are paired (mutual nearest
@@ -68,7 +68,7 @@ from .analysis import (
 from .measures import Thresholds, measure_tables
 
 __all__ = ["Seeds", "Synthesis", "as_region", "growth_order", "pairing_gate", "reference_centre", "ring_neighbourhoods",
-           "seed_patch", "seeds_1d", "seeds_2d", "synthesize", "target_count"]
+           "seeds_1d", "seeds_2d", "synthesize", "target_count"]
 
 #: Lloyd iterations by default. From a stratified random start in 1D the spacing then varies by about 1 %
 #: (std / mean; Lloyd in 1D is a diffusion whose longest wavelengths decay slowly); in 2D, from a uniform start,
@@ -229,14 +229,21 @@ def _start(seeds: Seeds, target, dimension: int) -> int:
     return int(np.argmin(np.hypot(*(seeds.positions - centre).T)))
 
 
+def _check_analysis(analysis) -> PatternAnalysis:
+    if not isinstance(analysis, PatternAnalysis):
+        raise TypeError(f"analysis must be a PatternAnalysis from analyze(), got {type(analysis).__name__}")
+    return analysis
+
+
 def reference_centre(analysis: PatternAnalysis) -> int:
     """The reference element nearest the middle of its path (1D) or the mean of its centres (2D)."""
+    _check_analysis(analysis)
     if analysis.dimension == 1:
         return int(np.argmin(np.abs(analysis.arc - (analysis.arc.min() + analysis.arc.max()) / 2.0)))
     return int(np.argmin(np.hypot(*(analysis.positions - analysis.positions.mean(axis=0)).T)))
 
 
-def seed_patch(target_graph, start: int, reference_graph, centre: int, gate: float) -> np.ndarray:
+def _seed_patch(target_graph, start: int, reference_graph, centre: int, gate: float) -> np.ndarray:
     """The reference elements the start's k-ring is seeded with (``start="centre"``), -1 elsewhere.
 
     The start copies the reference's centre element, and each element of its k-ring the element of the centre's
@@ -263,7 +270,7 @@ def seed_patch(target_graph, start: int, reference_graph, centre: int, gate: flo
 def pairing_gate(analysis: PatternAnalysis) -> float:
     """Half the median distance between neighbouring reference elements: the furthest two paired neighbours
     may lie apart under ``matching="coverage"`` (closer to another slot than to their own)."""
-    ends = analysis.positions[analysis.edges]
+    ends = _check_analysis(analysis).positions[analysis.edges]
     return 0.5 * float(np.median(np.hypot(*(ends[:, 0] - ends[:, 1]).T)))
 
 
@@ -399,7 +406,7 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     start : {"centre", "random"}
         How growth begins (the paper does not say what the centre element of Algorithm 1 receives). "centre"
         (default): the target's centre element and its k-ring copy the reference's centre element and its
-        k-ring (:func:`seed_patch`, Efros and Leung's seed patch), so that a synthesis as long as the exemplar
+        k-ring (:func:`_seed_patch`, Efros and Leung's seed patch), so that a synthesis as long as the exemplar
         reaches both ends of a ramp (Figure 6 c-e). "random": the centre element copies a uniformly random
         reference element.
     iterations : int
@@ -445,7 +452,7 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     target_graph = _graph_arrays(seeds.positions, seeds.frames, seeds.edges, rings)
     reference_graph = _graph_arrays(analysis.positions, analysis.frames, analysis.edges, rings)
     gate = pairing_gate(analysis)
-    initial = (seed_patch(target_graph, start_element, reference_graph, reference_centre(analysis), gate)
+    initial = (_seed_patch(target_graph, start_element, reference_graph, reference_centre(analysis), gate)
                if seeded_start else np.full(count, -1, dtype=np.int64))
     source, matched, n_candidates, score = grow(order, *target_graph, *reference_graph, tables, sigmas,
                                                 choice_rng.random(count), initial, mode, tolerance, gate ** 2,
