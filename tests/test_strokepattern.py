@@ -9,6 +9,7 @@ from paperlib.strokepattern import (
     MEASURES,
     Thresholds,
     analyze,
+    chain_edges,
     cluster_strokes,
     continuation,
     exchange_parameters,
@@ -395,3 +396,21 @@ def test_plot_strokes_leaves_the_hole_of_a_closed_stroke_empty():
     centre, on_ring = pixels[50, 50], pixels[50, int(round(50 + 50 * 1.0 / 1.5))]
     assert centre.min() == 255
     assert on_ring.max() < 64
+
+
+def test_graph_helpers_validate_and_ring_growth_stops():
+    # rings beyond the graph's diameter add nothing: the growth stops instead of looping 10**9 times
+    pointers, neighbours = ring_neighbourhoods(4, [[0, 1], [1, 2], [2, 3]], 10**9)
+    assert list(np.diff(pointers)) == [3, 3, 3, 3]
+    with pytest.raises(ValueError, match="outside"):
+        ring_neighbourhoods(3, [[0, 5]], 1)
+    with pytest.raises(ValueError, match="edges"):
+        shift_vectors(np.zeros((3, 2)), [[0.5, 1.0]])
+    with pytest.raises(ValueError, match="order"):
+        chain_edges([0.0, np.nan])
+    with pytest.raises(ValueError, match="start"):
+        growth_order(np.zeros((3, 2)), [[0, 1]], 7)
+    with pytest.raises(ValueError, match="means"):
+        rule_score([1.0, 2.0], Thresholds().vector(1.0))
+    with pytest.raises(ValueError, match="sigmas"):
+        rule_score(np.ones(5), [1, 1, 1, 1, 0])

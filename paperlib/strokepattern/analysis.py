@@ -307,9 +307,25 @@ def cluster_strokes(strokes, epsilon: float, *, contour: bool = False) -> np.nda
 # --------------------------------------------------------------------------- 2.3 distribution
 
 
+def graph_edges(edges, n: int, name: str = "edges") -> np.ndarray:
+    """``edges`` as an ``(m, 2)`` int64 array of node pairs, each node in ``[0, n)``; ValueError otherwise."""
+    array = np.asarray(edges)
+    if array.size == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    if array.ndim != 2 or array.shape[1] != 2 or not np.issubdtype(array.dtype, np.integer):
+        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs, got {array.dtype} of shape "
+                         f"{array.shape}")
+    if array.min() < 0 or array.max() >= n:
+        raise ValueError(f"{name} name nodes outside [0, {n}): {int(array.min())} to {int(array.max())}")
+    return array.astype(np.int64)
+
+
 def chain_edges(order) -> np.ndarray:
     """Edges between consecutive elements of a 1D chain, ``(n - 1, 2)`` (section 2.3)."""
-    order = np.asarray(order, dtype=np.int64)
+    order = np.asarray(order)
+    if order.ndim != 1 or (order.size and not np.issubdtype(order.dtype, np.integer)):
+        raise ValueError(f"order must be a 1D array of integer node indices, got {order.dtype} of shape {order.shape}")
+    order = order.astype(np.int64)
     return np.column_stack([order[:-1], order[1:]])
 
 
@@ -357,7 +373,7 @@ def unskewed_delaunay_edges(points, *, max_angle: float = MAX_UNSKEWED_ANGLE) ->
 def neighbour_lists(n: int, edges) -> list:
     """The neighbours of each of ``n`` nodes of an undirected graph given by ``edges`` ``(m, 2)``."""
     neighbours = [[] for _ in range(n)]
-    for i, j in np.asarray(edges, dtype=np.int64).reshape(-1, 2):
+    for i, j in graph_edges(edges, n):
         neighbours[i].append(int(j))
         neighbours[j].append(int(i))
     return neighbours
@@ -369,7 +385,9 @@ def shift_vectors(positions, edges) -> np.ndarray:
     Returns ``(n, 2)``; NaN for an element without neighbours.
     """
     positions = np.asarray(positions, dtype=np.float64)
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    if positions.ndim != 2 or positions.shape[1] != 2 or not np.isfinite(positions).all():
+        raise ValueError(f"positions must be a finite (n, 2) array, got shape {positions.shape}")
+    edges = graph_edges(edges, len(positions))
     sums = np.zeros_like(positions)
     counts = np.bincount(edges.ravel(), minlength=len(positions)).astype(np.float64)
     np.add.at(sums, edges[:, 0], positions[edges[:, 1]])

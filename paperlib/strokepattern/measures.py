@@ -74,7 +74,13 @@ def rule_score(means, sigmas) -> np.ndarray:
 
     ``means`` has the measures on its last axis, in :data:`MEASURES` order.
     """
-    r = np.asarray(means, dtype=np.float64) / np.asarray(sigmas, dtype=np.float64)
+    means, sigmas = np.asarray(means, dtype=np.float64), np.asarray(sigmas, dtype=np.float64)
+    if means.ndim < 1 or means.shape[-1] != len(MEASURES):
+        raise ValueError(f"means must hold the {len(MEASURES)} measures {MEASURES} on its last axis, got shape "
+                         f"{means.shape}")
+    if sigmas.shape != (len(MEASURES),) or not (np.isfinite(sigmas).all() and (sigmas > 0).all()):
+        raise ValueError(f"sigmas must be {len(MEASURES)} positive finite thresholds, got {sigmas!r}")
+    r = means / sigmas
     shape, par, ov, sup, col = np.moveaxis(r, -1, 0)
     return np.maximum(col, np.minimum(shape, np.maximum.reduce([par, ov, sup])))
 

@@ -62,6 +62,7 @@ from .analysis import (
     _as_path,
     as_region,
     chain_edges,
+    graph_edges,
     path_frames,
     unskewed_delaunay_edges,
 )
@@ -177,7 +178,7 @@ def _iterations(iterations) -> int:
 
 
 def _adjacency(n: int, edges) -> sparse.csr_matrix:
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    edges = graph_edges(edges, n)
     rows = np.concatenate([edges[:, 0], edges[:, 1]])
     cols = np.concatenate([edges[:, 1], edges[:, 0]])
     return sparse.csr_matrix((np.ones(len(rows), dtype=np.int8), (rows, cols)), shape=(n, n))
@@ -191,10 +192,14 @@ def ring_neighbourhoods(n: int, edges, rings: int):
     """
     if isinstance(rings, bool) or not isinstance(rings, (int, np.integer)) or rings < 1:
         raise ValueError(f"rings (the neighbourhood size k) must be an integer >= 1, got {rings!r}")
+    n = _count(n)
     adjacency = _adjacency(n, edges)
     reach = sparse.identity(n, dtype=np.int8, format="csr")
     for _ in range(int(rings)):
-        reach = ((reach + reach @ adjacency) > 0).astype(np.int8)
+        grown = ((reach + reach @ adjacency) > 0).astype(np.int8)
+        if grown.nnz == reach.nnz:  # every neighbourhood is a whole connected component: more rings add nothing
+            break
+        reach = grown
     reach = (reach - sparse.identity(n, dtype=np.int8, format="csr")).tocsr()
     reach.eliminate_zeros()
     reach.sort_indices()
@@ -211,7 +216,12 @@ def _local_offsets(positions, frames, pointers, neighbours) -> np.ndarray:
 
 def growth_order(positions, edges, start: int) -> np.ndarray:
     """Nodes by increasing hops from ``start``, ties by distance to it; unreachable nodes last (section 3.2)."""
+    positions = np.asarray(positions, dtype=np.float64)
+    if positions.ndim != 2 or positions.shape[1] != 2 or not np.isfinite(positions).all():
+        raise ValueError(f"positions must be a finite (n, 2) array, got shape {positions.shape}")
     n = len(positions)
+    if isinstance(start, bool) or not isinstance(start, (int, np.integer)) or not 0 <= start < n:
+        raise ValueError(f"start must be a node index in [0, {n}), got {start!r}")
     hops = np.full(n, np.inf)
     visited, predecessors = breadth_first_order(_adjacency(n, edges), start, directed=False)
     hops[start] = 0
