@@ -32,7 +32,7 @@ import numpy as np
 from scipy.stats import ks_2samp
 
 from ..geometry import Element
-from .analysis import PatternAnalysis, _element_colors, fit_elements
+from .analysis import PatternAnalysis, _element_colors, fit_elements, graph_edges
 from .measures import Thresholds, measure_tables, rule_score
 from .synthesis import place_element
 
@@ -83,7 +83,7 @@ def neighbour_differences(parameters: dict, edges, resolution: dict | None = Non
     missing = set(PARAMETERS) - set(parameters)
     if missing:
         raise ValueError(f"parameters lacks {sorted(missing)}: pass element_parameters(...)")
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    edges = graph_edges(edges, len(parameters["length"]))
     i, j = edges[:, 0], edges[:, 1]
     turn = np.mod(parameters["orientation"][i] - parameters["orientation"][j], np.pi)
     differences = {"orientation": np.minimum(turn, np.pi - turn),
