@@ -8,6 +8,7 @@ from paperlib.sketch import (
     close_curve,
     coarsen,
     copied_runs,
+    crossing_segments,
     default_weights,
     elaborate,
     filter_weights,
@@ -25,7 +26,9 @@ from paperlib.sketch import (
     train,
     wrap_angle,
 )
+from paperlib.datasets import hand_drawn_curve
 from paperlib.sketch._kernels import steer
+from paperlib.sketch.model import SHARPNESS
 
 
 def circle(n=200, radius=1.0, clockwise=False):
@@ -214,32 +217,73 @@ def steer_by_the_paper(phi, model, sigma, top, uniforms, sample):
         kept[order] = p[order]
         return kept / kept.sum(), order
 
-    def instantiate(p, order, u):
+    def instantiate(p, order, u, previous):
+        if model.transitions == "sharp" and len(order) > 1:   # never the previous sample's state again
+            order = order[order != previous]
         if not sample:
             return order[0]
-        return order[min(np.searchsorted(np.cumsum(p[order]), u, side="right"), len(order) - 1)]
+        mass = np.cumsum(p[order]) / p[order].sum()
+        return order[min(np.searchsorted(mass, u, side="right"), len(order) - 1)]
 
     p, order = threshold(condition(np.ones(n_states), phi[0]))
-    chosen = [instantiate(p, order, uniforms[0])]
+    chosen = [instantiate(p, order, uniforms[0], -1)]
     for t in range(1, len(phi)):
         predicted = np.zeros(n_states)
         for j in np.flatnonzero(p):
-            transitions = model.similarity[j] / model.similarity[j].sum()
+            transitions = model.transition[j] / model.transition[j].sum()
             np.add.at(predicted, model.successor[model.neighbours[j]], p[j] * transitions)
         p, order = threshold(condition(predicted, phi[t]))
-        chosen.append(instantiate(p, order, uniforms[t]))
+        chosen.append(instantiate(p, order, uniforms[t], chosen[-1]))
     return np.array(chosen)
 
 
+@pytest.mark.parametrize("transitions", ["sharp", "paper"])
 @pytest.mark.parametrize("sample", [False, True])
-def test_kernel_follows_the_algorithm_of_section_3(model, sample):
+def test_kernel_follows_the_algorithm_of_section_3(transitions, sample):
+    curves = [wiggly(lobes=lobes, teeth=teeth) for lobes, teeth in [(2, 20), (3, 28), (4, 16)]]
+    model = train(curves, order=6, scales=3, filter_width=5, samples_per_curve=64, transitions=transitions)
     sketch = resample_curve(wiggly(lobes=2, depth=0.0), 150, closed=True)
     phi = tangent_angles(sketch, closed=True)
     uniforms = np.random.default_rng(3).random(phi.size)
     chosen, restarts = steer(phi, np.ascontiguousarray(model.steering_angles), model.position, model.successor,
-                             model.neighbours, model.similarity, 0.3, 5, sample, uniforms, -1.0, True)
+                             model.neighbours, model.transition, 0.3, 5, sample, uniforms, -1.0, True,
+                             transitions == "paper")
     assert restarts == 0
     np.testing.assert_array_equal(chosen, steer_by_the_paper(phi, model, 0.3, 5, uniforms, sample))
+
+
+def test_sharp_transitions_weigh_d_to_the_power_and_never_return_to_the_state():
+    curves = [wiggly(lobes=lobes, teeth=teeth) for lobes, teeth in [(2, 20), (3, 28)]]
+    sharp, paper = (train(curves, order=6, scales=3, samples_per_curve=64, transitions=t) for t in ("sharp", "paper"))
+    np.testing.assert_array_equal(paper.transition, paper.similarity)
+    back = sharp.successor[sharp.neighbours] == np.arange(len(sharp))[:, None]
+    assert back.any() and np.all(sharp.transition[back] == 0.0)
+    np.testing.assert_allclose(sharp.transition[~back], sharp.similarity[~back] ** SHARPNESS)
+    result = elaborate(sharp, wiggly(lobes=2, depth=0.0), n_samples=300)
+    assert np.all(result.states[1:] != result.states[:-1])          # no stutter
+    with pytest.raises(ValueError, match="transitions"):
+        train(curves, transitions="uniform")
+
+
+def test_crossing_segments_finds_the_crossing_pair_and_nothing_on_a_simple_curve():
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    assert crossing_segments(square, closed=True).size == 0
+    bow_tie = np.array([[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]])
+    np.testing.assert_array_equal(np.sort(crossing_segments(bow_tie, closed=True)), [0, 2])
+    back_on_itself = np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]])
+    assert crossing_segments(back_on_itself, closed=False).size == 2
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_untangled_elaborations_are_simple_and_the_paper_rules_are_not_always(model, seed):
+    """Section 3.1's intersections: with untangle (default) every elaboration is a simple curve."""
+    blob = hand_drawn_curve(200, rng=seed, size=2.0)
+    result = elaborate(model, blob, n_samples=400, mode="sample", rng=seed)
+    assert result.crossings == 0 and crossing_segments(result.points, closed=True).size == 0
+    raw = elaborate(model, blob, n_samples=400, mode="sample", rng=seed, untangle=False)
+    np.testing.assert_array_equal(raw.states, result.states)
+    assert raw.crossings == len(crossing_segments(raw.points, closed=True)) // 2
+    assert (raw.crossings == 0) == (result.untangled == 0)
 
 
 def test_elaboration_is_reproducible_and_seeds_differ(model):
@@ -254,11 +298,16 @@ def test_elaboration_is_reproducible_and_seeds_differ(model):
 
 def test_elaboration_follows_the_sketch_direction(model):
     """Eq. (5): every instantiated state's steering angle lies near the sketch's angle."""
-    result = elaborate(model, wiggly(lobes=3, depth=0.0), n_samples=300, sigma=0.1)
-    error = wrap_angle(model.steering_angles[result.states] - result.steering)
+    paper = train([wiggly(lobes=lobes, teeth=teeth) for lobes, teeth in [(2, 20), (3, 28), (4, 16)]],
+                  order=8, scales=4, filter_width=5, samples_per_curve=96, transitions="paper")
+    result = elaborate(paper, wiggly(lobes=3, depth=0.0), n_samples=300, sigma=0.1, coarse="state")
+    error = wrap_angle(paper.steering_angles[result.states] - result.steering)
     assert np.abs(error).max() < 0.5 and np.abs(error).mean() < 0.1
-    # with coarse="sketch" the output's direction minus the state's detail is exactly the sketch's
-    exact = elaborate(model, wiggly(lobes=3, depth=0.0), n_samples=300, sigma=0.1, coarse="sketch")
+    # sharp transitions follow the training curve more and the sketch less, still within a few sigma
+    sharp = elaborate(model, wiggly(lobes=3, depth=0.0), n_samples=300, sigma=0.1, coarse="state")
+    assert np.abs(wrap_angle(model.steering_angles[sharp.states] - sharp.steering)).mean() < 0.2
+    # with coarse="sketch" (the default) the output's direction minus the state's detail is exactly the sketch's
+    exact = elaborate(model, wiggly(lobes=3, depth=0.0), n_samples=300, sigma=0.1, untangle=False)
     detail = model.angles[exact.states, 0] - model.steering_angles[exact.states]
     np.testing.assert_allclose(exact.angles - detail, exact.steering, atol=1e-12)
 

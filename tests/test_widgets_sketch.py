@@ -33,7 +33,7 @@ from paperlib.widgets.sketch import (
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 SAMPLES = 300
 SMALL = dict(n_samples=SAMPLES, figsize=(6, 2.5), dpi=40)
-DEFAULTS = dict(training="coastlines", order=20, scales=5, sigma=0.1, top=20, mode="max", closure=False,
+DEFAULTS = dict(training="coastlines", order=20, scales=5, sigma=0.1, top=20, mode="max", closure=True,
                 use_window=False, window=0.1, samples=SAMPLES, seed=0, source="preset", preset="coastline_41")
 #: Hausdorff distance between a drawing and its elaboration, over the drawing's perimeter. Measured on the
 #: ellipse below with the 40 coastlines (order 20, 5 scales): 0.043 at the most probable states, 0.021-0.047 over
@@ -148,12 +148,12 @@ def test_elaboration_controls_rerun_only_the_elaboration(explorer):
     assert explorer.points_hash == base
     hashes = [base]
     for control, value in ((explorer.sigma, 0.3), (explorer.top, 5), (explorer.mode, "sample"),
-                           (explorer.use_window, True), (explorer.closure, True)):
+                           (explorer.use_window, True), (explorer.closure, False)):
         control.value = value  # each one changes the elaboration
         assert explorer.error is None and explorer.times["train"] == 0.0
         hashes.append(explorer.points_hash)
     assert len(set(hashes)) == len(hashes)
-    assert "sample, sigma 0.3, top 5, seed 7, closure distribute, window 0.1" in explorer.summary
+    assert "sample, sigma 0.3, top 5, seed 7, closure none, window 0.1" in explorer.summary
     explorer.samples.value = 500
     assert explorer.n_samples == 500 and "500 samples" in explorer.summary
     assert explorer.calls["train"] == trained and explorer.calls["elaborate"] == runs + 7
@@ -161,10 +161,11 @@ def test_elaboration_controls_rerun_only_the_elaboration(explorer):
 
 def test_closure_distributes_the_gap_without_changing_the_chain(explorer):
     gap, states = explorer.elaboration.closing_gap, explorer.elaboration.states
-    explorer.closure.value = True
+    assert "closure distribute" in explorer.summary
+    explorer.closure.value = False
     assert explorer.elaboration.closing_gap == gap > 0  # measured before the correction
     np.testing.assert_array_equal(explorer.elaboration.states, states)
-    assert "closure distribute" in explorer.summary
+    assert "closure none" in explorer.summary
 
 
 def test_order_and_scales_retrain_and_models_are_cached(explorer):

@@ -27,7 +27,7 @@ from .curves import (
 )
 from .measures import box_counting_dimension, curve_hausdorff, densify, turning_ks, turning_per_sample
 from .model import SketchModel, default_weights, state_similarity, train
-from .steering import Elaboration, coarsen, copied_runs, elaborate, sketch_from_svg
+from .steering import Elaboration, coarsen, copied_runs, crossing_segments, elaborate, sketch_from_svg
 
 __all__ = [
     "box_counting_dimension",
@@ -41,6 +41,7 @@ __all__ = [
     "close_curve",
     "coarsen",
     "copied_runs",
+    "crossing_segments",
     "default_weights",
     "elaborate",
     "filter_weights",

@@ -103,26 +103,44 @@ def _keep_top(probability, touched, count, top, candidates, weights):
 
 
 @njit(cache=True)
-def _instantiate(candidates, weights, kept, sample, uniform):
-    """The maximum-probability candidate (ties: the first), or one drawn with its probability."""
-    if not sample:
-        return candidates[0]
-    acc = 0.0
+def _instantiate(candidates, weights, kept, sample, uniform, excluded):
+    """The maximum-probability candidate (ties: the first), or one drawn with its probability.
+
+    ``excluded`` (-1: none) is never chosen while another candidate is kept: the previous sample's state,
+    so that the chain does not repeat a state (a repeated state repeats its angle: a straight stutter).
+    """
+    mass = 0.0
     for m in range(kept):
-        acc += weights[m]
+        if candidates[m] != excluded:
+            mass += weights[m]
+    if not mass > 0.0:
+        return candidates[0]
+    if not sample:
+        for m in range(kept):
+            if candidates[m] != excluded:
+                return candidates[m]
+    acc = 0.0
+    last = candidates[0]
+    for m in range(kept):
+        if candidates[m] == excluded:
+            continue
+        last = candidates[m]
+        acc += weights[m] / mass
         if uniform < acc:
             return candidates[m]
-    return candidates[kept - 1]
+    return last
 
 
 @njit(cache=True)
-def steer(phi, steering, position, successor, neighbours, similarity, sigma_in, top, sample, uniforms,
-          window, cyclic):
+def steer(phi, steering, position, successor, neighbours, transition, sigma_in, top, sample, uniforms,
+          window, cyclic, repeat):
     """The steered chain of section 3; returns the instantiated state of every sample and the restarts.
 
     ``phi[t]`` is the sketch's angle at sample ``t``; ``steering`` every state's angle at the steering scale;
     ``position`` its arc-length fraction; ``successor`` the next state (-1: none); ``neighbours`` and
-    ``similarity`` each state's most similar states and eq. (4)'s D. ``window`` (< 0: none) keeps only
+    ``transition`` each state's most similar states and the weight of the move to each one's successor
+    (:attr:`.model.SketchModel.transition`). ``repeat`` False never instantiates the previous sample's state
+    again while another candidate is kept. ``window`` (< 0: none) keeps only
     states whose position is within it of the sketch's ``t / n``. A restart happens when the predicted
     states all have zero probability after conditioning: the chain starts again from eq. (5) over all states.
     """
@@ -142,7 +160,7 @@ def steer(phi, steering, position, successor, neighbours, similarity, sigma_in, 
         probability[touched[m]] = 0.0
     if kept == 0:
         return chosen, -1
-    chosen[0] = _instantiate(candidates, weights, kept, sample, uniforms[0])
+    chosen[0] = _instantiate(candidates, weights, kept, sample, uniforms[0], -1)
     for t in range(1, n):
         u = t / n
         count = 0
@@ -153,7 +171,7 @@ def steer(phi, steering, position, successor, neighbours, similarity, sigma_in, 
             for m in range(neighbours.shape[1]):
                 nxt = successor[neighbours[j, m]]
                 if nxt >= 0 and _in_window(position[nxt], u, window, cyclic):
-                    norm += similarity[j, m]
+                    norm += transition[j, m]
             if norm <= 0.0:
                 continue
             for m in range(neighbours.shape[1]):
@@ -163,7 +181,7 @@ def steer(phi, steering, position, successor, neighbours, similarity, sigma_in, 
                         seen[nxt] = True
                         touched[count] = nxt
                         count += 1
-                    probability[nxt] += weights[c] * similarity[j, m] / norm
+                    probability[nxt] += weights[c] * transition[j, m] / norm
         # condition on the sketch (eq. 5)
         for m in range(count):
             k = touched[m]
@@ -181,5 +199,5 @@ def steer(phi, steering, position, successor, neighbours, similarity, sigma_in, 
                 probability[touched[m]] = 0.0
             if kept == 0:
                 return chosen, -1
-        chosen[t] = _instantiate(candidates, weights, kept, sample, uniforms[t])
+        chosen[t] = _instantiate(candidates, weights, kept, sample, uniforms[t], -1 if repeat else chosen[t - 1])
     return chosen, restarts

@@ -16,7 +16,19 @@ similarity of eq. (4),
 
 with ``G(x) = exp(-x^2 / (2 sigma^2))`` of the wrapped angle difference and ``W`` the weight matrix over
 scale and history. Training stores, for every state, its ``neighbours`` most similar states and their ``D``:
-the paper's *"linked list"* of transition probabilities. To find them without comparing every pair of states
+the paper's *"linked list"* of transition probabilities. How the list weighs them is ``transitions``:
+
+- ``"paper"``: in proportion to D, as section 3 says. D is an *average* of per-component Gaussians, so a
+  state's near neighbours score 0.4-0.8 against its own 1: a state's own successor gets about a twelfth of
+  its probability, the chain mixes training curves at every step, and a sketch of a training leaf is not
+  reconstructed (Fig. 6); and a state's predecessor is among its most similar states, whose successor is the
+  state itself, so the chain repeats states (straight stutters in the curve).
+- ``"sharp"`` (default, ours): in proportion to ``D ** SHARPNESS``, and never to the state itself (the
+  predecessor's move is dropped). Raising D to a power keeps the ranking of eq. (4) and makes the
+  state's own successor dominate unless another state is nearly as similar: exact where the training
+  data is unambiguous, mixing where it is not.
+
+To find them without comparing every pair of states
 (``N^2`` comparisons of ``scales x order`` angles), states are embedded in a low-dimensional Euclidean space
 where the distance approximates ``sum w (angle difference)^2`` (the quadratic form of eq. (4) near a match):
 the history relative to the state's current coarse angle, reduced by PCA, plus that angle on a circle. A
@@ -52,6 +64,10 @@ from .curves import (
 
 __all__ = ["SketchModel", "default_weights", "state_similarity", "train"]
 
+#: Exponent of D in the ``"sharp"`` transition weights (chosen on held-out coastlines and reconstructed
+#: leaves: 1 mixes training curves at every step, 8 keeps the own successor when it is unambiguous).
+SHARPNESS = 8.0
+TRANSITIONS = ("sharp", "paper")
 #: Candidates drawn from the k-d tree per neighbour kept, before eq. (4) ranks them.
 POOL_FACTOR = 6
 #: Fraction of the relative history's variance the PCA embedding keeps (and at most this many components).
@@ -92,6 +108,11 @@ class SketchModel:
         Each state's most similar states by eq. (4), most similar first (the state itself included).
     similarity : ndarray, shape (N, k)
         Their similarity D, in (0, 1].
+    transitions : str
+        How the transitions weigh the most similar states (``"sharp"`` or ``"paper"``, see the module).
+    transition : ndarray, shape (N, k)
+        The weight of the move from each state to the successor of each of its most similar states
+        (unnormalised; 0 for a move back to the state itself under ``"sharp"``).
     extent_ratio : float
         Median over the training curves of the radius of gyration of the curve at the steering scale (its
         angles filtered, integrated back with the same arc length) over that of the curve itself, >= 1 for
@@ -116,6 +137,8 @@ class SketchModel:
     successor: np.ndarray
     neighbours: np.ndarray
     similarity: np.ndarray
+    transitions: str
+    transition: np.ndarray
     extent_ratio: float
 
     def __len__(self) -> int:
@@ -176,6 +199,7 @@ def train(
     weights=None,
     similarity_sigma: float = 0.1,
     neighbours: int = 12,
+    transitions: str = "sharp",
     samples_per_curve: int = 256,
     closed: bool = True,
 ) -> SketchModel:
@@ -199,9 +223,12 @@ def train(
     weights : array_like, shape (scales, order), optional
         The weight matrix W of eq. (4) (default: :func:`default_weights`).
     similarity_sigma : float
-        Standard deviation, in radians, of the Gaussian G of eq. (4).
+        Standard deviation, in radians, of the Gaussian G of eq. (4) (the paper gives none).
     neighbours : int
         How many of the most similar states each state's transitions go through (>= 1).
+    transitions : {"sharp", "paper"}
+        How the transitions weigh them (module docstring): ``"paper"`` in proportion to D, ``"sharp"`` (ours)
+        to ``D ** SHARPNESS`` without moves back to the state itself.
     samples_per_curve : int
         Samples per training curve (> order).
     closed : bool
@@ -225,6 +252,8 @@ def train(
     if steering_scale >= scales:
         raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
     similarity_sigma = positive_number(similarity_sigma, "similarity_sigma")
+    if transitions not in TRANSITIONS:
+        raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
     weights = _check_weights(weights, scales, order)
     taps = filter_weights(filter_width, kernel)
     curves = list(curves) if curves is not None else []
@@ -245,8 +274,20 @@ def train(
         similarity_sigma=similarity_sigma, filter=taps, closed=closed, samples_per_curve=samples,
         curves=tuple(resampled), states=table["states"], angles=table["angles"], curve=table["curve"], sample=table["sample"],
         position=table["position"], successor=table["successor"], neighbours=neighbour_index,
-        similarity=similarity, extent_ratio=_extent_ratio(resampled, angle_blocks, steering_scale, closed),
+        similarity=similarity, transitions=transitions,
+        transition=_transition_weights(neighbour_index, similarity, table["successor"], transitions),
+        extent_ratio=_extent_ratio(resampled, angle_blocks, steering_scale, closed),
     )
+
+
+def _transition_weights(neighbours, similarity, successor, transitions: str) -> np.ndarray:
+    """The weight of each move to a similar state's successor (see the module docstring)."""
+    if transitions == "paper":
+        return similarity.copy()
+    weights = similarity**SHARPNESS
+    back_to_itself = successor[neighbours] == np.arange(len(neighbours))[:, None]
+    weights[back_to_itself] = 0.0
+    return weights
 
 
 def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> float:

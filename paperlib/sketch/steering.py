@@ -19,8 +19,21 @@ algorithm, as :func:`elaborate` runs it:
 The instantiated angles are integrated from the sketch's first point with the sketch's sample spacing. By
 default the result is then scaled to the sketch's radius of gyration and moved onto its centroid
 (``match_extent``, our addition: the detail's wiggles use up arc length, so a detailed curve as long as the
-sketch spans less, by about ``model.extent_ratio``, and the conditioning error drifts it). The paper reports *"issues with curve closures [...] due to accumulated errors"*; ``closure="distribute"``
-(our correction, an option) spreads the gap between the curve's end and its start evenly along the curve.
+sketch spans less, by about ``model.extent_ratio``, and the conditioning error drifts it). The paper reports
+*"issues with curve closures and intersections which are primarily due to accumulated errors and the
+stochastic nature of the algorithm"* (section 3.1). Our corrections, on by default, each with the paper's
+behaviour as an option:
+
+- ``coarse="sketch"``: each sample's direction is the sketch's plus the state's detail, so the conditioning
+  error does not accumulate into drift (``"state"``: the state's own angle, the paper);
+- ``closure="distribute"`` (the default for a closed sketch): the gap between the curve's end and its start
+  is spread evenly along the curve, every segment moving by the same small vector, so no kink appears
+  (``"none"``: the gap stays, the paper);
+- ``untangle=True``: where the curve crosses itself, the detail (the output's direction minus the sketch's)
+  is halved over ``UNTANGLE_REACH`` samples on each side of both crossing segments, and the curve rebuilt,
+  until it is simple; with the detail gone it is the resampled sketch, which is simple, so this ends
+  (:data:`UNTANGLE_ROUNDS` halvings, then the detail near the remaining crossings is dropped over a reach
+  that doubles until the curve is simple).
 
 Two situations the paper does not cover get a documented answer: when no predicted state survives the
 conditioning (all probabilities underflow, the chain has lost the sketch), the chain restarts from step 2
@@ -40,6 +53,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from .._checks import integer_at_least, positive_number
 from ..geometry import read_svg
@@ -57,10 +71,13 @@ from .curves import (
 )
 from .model import SketchModel
 
-__all__ = ["Elaboration", "coarsen", "copied_runs", "elaborate", "sketch_from_svg"]
+__all__ = ["Elaboration", "coarsen", "copied_runs", "crossing_segments", "elaborate", "sketch_from_svg"]
 
 MODES = ("max", "sample")
-CLOSURES = (None, "distribute")
+CLOSURES = (None, "distribute", "none")
+#: Halvings of the detail near crossings before it is dropped there (0.5 ** 8 < 0.4 %), and how many samples
+#: on each side of a crossing segment "near" covers.
+UNTANGLE_ROUNDS, UNTANGLE_REACH = 8, 4
 COARSE = ("state", "sketch")
 
 
@@ -87,6 +104,10 @@ class Elaboration:
         divided by the sketch's length (0 for an open sketch).
     restarts : int
         How often the chain lost every candidate and restarted from the sketch alone.
+    crossings : int
+        Pairs of segments of :attr:`points` that cross (0: a simple curve).
+    untangled : int
+        Samples whose detail was reduced to remove crossings (``untangle``; 0 when none crossed).
     """
 
     points: np.ndarray
@@ -97,6 +118,8 @@ class Elaboration:
     closed: bool
     closing_gap: float
     restarts: int
+    crossings: int
+    untangled: int
 
 
 def _check_choice(value, name: str, choices) -> None:
@@ -130,7 +153,8 @@ def elaborate(
     window: float | None = None,
     closure: str | None = None,
     match_extent: bool = True,
-    coarse: str = "state",
+    coarse: str = "sketch",
+    untangle: bool = True,
     rng=None,
 ) -> Elaboration:
     """Elaborate a hand-drawn sketch into a detailed curve of the model's class (section 3).
@@ -155,19 +179,23 @@ def elaborate(
         Instantiate the most probable state (the paper's choice) or draw one.
     window : float, optional
         Search window Delta t as a fraction of the curve (in (0, 0.5]): for non-stationary classes.
-    closure : {None, "distribute"}
-        ``"distribute"`` closes a closed elaboration by spreading its end gap evenly along it.
+    closure : {None, "distribute", "none"}
+        ``"distribute"`` (what None means for a closed sketch) closes a closed elaboration by spreading its end
+        gap evenly along it; ``"none"`` leaves the gap (the paper). Open sketches take None only.
     match_extent : bool
         Scale the elaboration about its centroid to the sketch's radius of gyration and move it onto the
         sketch's centroid (our addition, on by default, :func:`.curves.match_size`). ``False`` integrates
         from the sketch's first point with the sketch's sample spacing, as the paper does: the detail's
         wiggles use up arc length, so the elaboration comes out smaller than the sketch (by about
         ``model.extent_ratio``) and drifts with the accumulated conditioning error.
-    coarse : {"state", "sketch"}
-        The coarse direction of each output sample: the instantiated state's (``"state"``, the paper: the
-        state's finest angle as it is) or the sketch's (``"sketch"``, our option: the sketch's angle plus the
-        state's detail, finest minus steering-scale angle), which removes the conditioning error that
-        accumulates into drift.
+    coarse : {"sketch", "state"}
+        The coarse direction of each output sample: the sketch's (``"sketch"``, our default: the sketch's
+        angle plus the state's detail, finest minus steering-scale angle), which removes the conditioning
+        error that accumulates into drift, or the instantiated state's (``"state"``, the paper: the state's
+        finest angle as it is).
+    untangle : bool
+        Reduce the detail where the curve crosses itself until it is simple (module docstring; our
+        correction). False keeps the crossings, as the paper reports them.
     rng : None, int or numpy.random.Generator
         Drives ``mode="sample"``.
 
@@ -196,28 +224,99 @@ def elaborate(
             raise ValueError(f"window must be at most 0.5 (half the curve), got {window}")
     if closure is not None and not closed:
         raise ValueError("closure applies to closed sketches only")
+    closure = closure or ("distribute" if closed else "none")
 
     resampled = resample_curve(sketch, n_samples, closed=closed)
     phi = tangent_angles(resampled, closed=closed)
     uniforms = np.random.default_rng(rng).random(phi.size)
     states, restarts = steer(
         phi, np.ascontiguousarray(model.steering_angles), model.position, model.successor, model.neighbours,
-        model.similarity, sigma, top, mode == "sample", uniforms, -1.0 if window is None else window,
-        model.closed,
+        model.transition, sigma, top, mode == "sample", uniforms, -1.0 if window is None else window,
+        model.closed, model.transitions == "paper",
     )
     if restarts < 0:
         raise ValueError("no training state lies in the search window: widen window")
     angles = _instantiated_angles(model, states, phi, coarse)
     segments = np.diff(np.vstack([resampled, resampled[:1]]) if closed else resampled, axis=0)
     step = float(np.hypot(*segments.T).mean())
-    path = integrate_angles(angles, step, start=resampled[0])
-    gap = float(np.hypot(*(path[-1] - path[0])) / (step * angles.size)) if closed else 0.0
-    if closed:
-        path = close_curve(path) if closure == "distribute" else path[:-1]
-    if match_extent:
-        path = match_size(path, resampled)
+    gain = np.ones(angles.size)
+
+    def build():
+        """The curve of the angles with the current detail gain: integrated, closed, sized."""
+        path = integrate_angles(phi + gain * (angles - phi), step, start=resampled[0])
+        gap = float(np.hypot(*(path[-1] - path[0])) / (step * angles.size)) if closed else 0.0
+        if closed:
+            path = path[:-1] if closure == "none" else close_curve(path)
+        return (match_size(path, resampled) if match_extent else path), gap
+
+    path, gap = build()
+    crossing = crossing_segments(path, closed=closed)
+    if untangle and crossing.size:
+        path, crossing = _untangle(build, gain, crossing, closed)
+    angles = phi + gain * (angles - phi)
     return Elaboration(points=path, angles=angles, sketch=resampled, steering=phi, states=states,
-                       closed=closed, closing_gap=gap, restarts=int(restarts))
+                       closed=closed, closing_gap=gap, restarts=int(restarts),
+                       crossings=int(len(crossing) // 2), untangled=int(np.count_nonzero(gain < 1.0)))
+
+
+def _untangle(build, gain: np.ndarray, crossing: np.ndarray, closed: bool):
+    """Reduce ``gain`` (in place) near the crossings until ``build()`` gives a simple curve.
+
+    The detail near both segments of every crossing is halved ``UNTANGLE_ROUNDS`` times; crossings that
+    remain lose the detail near them over a reach that doubles each round, up to the whole curve (the
+    resampled sketch, which is simple).
+    """
+    reach, halvings = UNTANGLE_REACH, 0
+    path = None
+    while crossing.size:
+        near = _near(crossing, gain.size, reach, closed)
+        if halvings < UNTANGLE_ROUNDS:
+            gain[near] *= 0.5
+            halvings += 1
+        elif reach < gain.size:
+            gain[near] = 0.0
+            reach *= 2
+        else:
+            gain[:] = 0.0
+        path, _ = build()
+        crossing = crossing_segments(path, closed=closed)
+        if not gain.any():
+            break
+    return path, crossing
+
+
+def _near(segments: np.ndarray, n: int, reach: int, closed: bool) -> np.ndarray:
+    """The samples within ``reach`` of any of the given segments (cyclically on a closed curve)."""
+    offsets = np.arange(-reach, reach + 1)
+    around = (segments[:, None] + offsets).ravel()
+    return np.unique(around % n if closed else around[(around >= 0) & (around < n)])
+
+
+def crossing_segments(points, *, closed: bool) -> np.ndarray:
+    """The segments of a polyline that cross another of its segments, once per crossing pair and segment.
+
+    Segment ``i`` joins point ``i`` to point ``i + 1`` (to point 0 for the last segment of a closed ring).
+    Segments that share an end point count only if they overlap along a line (a turn back on itself).
+    Returns an array holding both segments of every crossing pair (so its length is twice the number of
+    pairs); empty for a simple curve.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    path = np.vstack([points, points[:1]]) if closed else points
+    line = shapely.LinearRing(path) if closed else shapely.LineString(path)
+    if line.is_simple:
+        return np.empty(0, dtype=np.int64)
+    segments = shapely.linestrings(np.stack([path[:-1], path[1:]], axis=1))
+    first, second = shapely.STRtree(segments).query(segments, predicate="intersects")
+    n = len(segments)
+    apart = np.abs(first - second)
+    if closed:
+        apart = np.minimum(apart, n - apart)
+    pairs = (first < second) & (apart > 1)
+    adjacent = (first < second) & (apart == 1)
+    if adjacent.any():   # neighbours meet at their shared point; they cross only if they overlap
+        overlap = shapely.length(shapely.intersection(segments[first[adjacent]], segments[second[adjacent]])) > 0
+        pairs[np.flatnonzero(adjacent)[overlap]] = True
+    return np.concatenate([first[pairs], second[pairs]]).astype(np.int64)
 
 
 def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: bool | None = None) -> np.ndarray:

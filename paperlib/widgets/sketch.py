@@ -449,7 +449,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
     def elaboration_options(self) -> dict:
         """The keyword arguments of :func:`paperlib.sketch.elaborate` the controls set (``rng`` included)."""
         return dict(n_samples=int(self.samples.value), sigma=float(self.sigma.value), top=int(self.top.value),
-                    mode=self.mode.value, closure="distribute" if self.closure.value else None,
+                    mode=self.mode.value, closure="distribute" if self.closure.value else "none",
                     window=float(self.window.value) if self.use_window.value else None, rng=int(self.seed.value))
 
     def _run_elaboration(self) -> bool:
@@ -557,7 +557,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
             lines.append(f"sketch: {self.sketch_label}, {len(self.sketch)} points")
         options = self.elaboration_options()
         settings = (f"{options['mode']}, sigma {options['sigma']:.3g}, top {options['top']}, seed {options['rng']}"
-                    + (", closure distribute" if options["closure"] else "")
+                    + f", closure {options['closure']}"
                     + (f", window {options['window']:g}" if options["window"] is not None else ""))
         if self.elaboration is not None:
             lines.append(f"elaboration ({settings}): {self.n_samples} samples, {self.restarts} restarts, "
@@ -644,7 +644,7 @@ def _pair(values, name: str, check) -> tuple:
 
 
 def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: int = 5, sigma: float = 0.1,
-                    top: int = 20, mode: str = "max", closure: str | None = None, window: float | None = None,
+                    top: int = 20, mode: str = "max", closure: str = "distribute", window: float | None = None,
                     seed: int = 0, n_samples: int = 1000, preset: str | None = None, figsize=(10, 4.5), dpi: int = 80,
                     canvas_size=(420, 320)) -> SketchExplorer:
     """An interactive explorer of Simhon & Dudek 2001's elaboration of hand-drawn sketches.
@@ -667,8 +667,9 @@ def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: in
         States kept by the threshold, 1 to 200.
     mode : {"max", "sample"}
         Instantiate the most probable state (the paper) or draw one (seeds then differ).
-    closure : {None, "distribute"}
-        Close the elaboration by distributing its end gap (our correction).
+    closure : {"distribute", "none"}
+        Close the elaboration by distributing its end gap (our correction, the default) or leave the gap
+        (the paper).
     window : float, optional
         Search window Delta t as a fraction of the curve, 0.01 to 0.5 (None: no window).
     seed : int
@@ -707,8 +708,8 @@ def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: in
     top = _integer_in(top, "top", TOP_RANGE)
     if mode not in ("max", "sample"):
         raise ValueError(f"mode must be 'max' or 'sample', got {mode!r}")
-    if closure not in (None, "distribute"):
-        raise ValueError(f"closure must be None or 'distribute', got {closure!r}")
+    if closure not in ("distribute", "none"):
+        raise ValueError(f"closure must be 'distribute' or 'none', got {closure!r}")
     if window is not None:
         window = _number_in(window, "window", *WINDOW_RANGE)
     seed = integer_at_least(seed, "seed", 0)
