@@ -11,6 +11,10 @@ samples with the model above (trained once, not timed), the paper's maximum-prob
 Target (issue 8): <= 0.5 s for 1,000 samples; paper: "real time response" on a 1 GHz P3. Baseline, same
 run: the sketch's preparation alone (validation, resampling, tangent angles), so the ratio is the chain's
 cost over reading the sketch.
+
+"sketch: elaborate a held-out coastline": the same at n samples for the coarse version of held-out coastline
+48 (``coastlines(54)[48]``, the case whose detail crosses itself most often in the notebooks), so the time
+includes untangling the crossings (issue 20: <= 0.5 s for 1,000 samples). Same baseline.
 """
 
 from functools import cache
@@ -20,6 +24,7 @@ import numpy as np
 from paperlib.datasets import coastlines
 from paperlib.sketch import (
     check_curve,
+    coarsen,
     elaborate,
     filter_weights,
     multiscale_angles,
@@ -77,4 +82,24 @@ def sketch_preparation(n):
 def elaboration(n):
     trained, sketch = model(), blob()
     elaborate(trained, sketch, n_samples=n)  # warm the numba kernel
+    return lambda: elaborate(trained, sketch, n_samples=n)
+
+
+@cache
+def held_out_sketch():
+    return coarsen(training_curves(54)[48], model())
+
+
+def held_out_preparation(n):
+    sketch = held_out_sketch()
+    return lambda: tangent_angles(resample_curve(check_curve(sketch, closed=True, min_points=20), n,
+                                                 closed=True), closed=True)
+
+
+@benchmark("sketch: elaborate a held-out coastline (n samples, crossings untangled)", sizes=[1000],
+           baseline=held_out_preparation, baseline_name="sketch validation, resampling and angles alone")
+def held_out_elaboration(n):
+    trained, sketch = model(), held_out_sketch()
+    result = elaborate(trained, sketch, n_samples=n)  # warm the numba kernel
+    assert result.crossings == 0
     return lambda: elaborate(trained, sketch, n_samples=n)

@@ -166,20 +166,31 @@ def filter_weights(filter_width: int = 9, kernel="uniform") -> np.ndarray:
     return weights / weights.sum()
 
 
-def lowpass(theta, weights, *, closed: bool) -> np.ndarray:
-    """One pass of the low-pass filter over a tangent-angle signal (cyclic on a closed curve)."""
+def lowpass(theta, weights, *, closed: bool, causal: bool = False) -> np.ndarray:
+    """One pass of the low-pass filter over a tangent-angle signal (cyclic on a closed curve).
+
+    ``causal=False`` centres the filter on each sample (it looks ``len(weights) // 2`` samples ahead);
+    ``causal=True`` is the paper's *"time-invariant causal linear filter"* (section 3, eq. 2): output ``t``
+    weighs samples ``t, t - 1, ..., t - len(weights) + 1`` only, so the result lags the signal by the
+    filter's mean delay ``sum_k k w_k`` (half its width for a symmetric filter).
+    """
     theta = np.asarray(theta, dtype=np.float64)
+    weights = np.asarray(weights, dtype=np.float64)
+    # convolve1d centres the kernel; moving its origin by half its width makes it use the past only
+    origin = -(weights.size // 2) if causal else 0
     if not closed:
-        return convolve1d(theta, weights, mode="nearest")
-    trend = total_turning(theta) * np.arange(theta.size) / theta.size
-    return convolve1d(theta - trend, weights, mode="wrap") + trend
+        return convolve1d(theta, weights, mode="nearest", origin=origin)
+    slope = total_turning(theta) / theta.size
+    trend = slope * np.arange(theta.size)
+    lag = float(np.dot(np.arange(weights.size), weights)) if causal else 0.0
+    return convolve1d(theta - trend, weights, mode="wrap", origin=origin) + trend - slope * lag
 
 
-def multiscale_angles(theta, scales: int, weights, *, closed: bool) -> np.ndarray:
+def multiscale_angles(theta, scales: int, weights, *, closed: bool, causal: bool = False) -> np.ndarray:
     """The angles at ``scales`` scales, shape ``(scales, n)``: row ``s`` is ``s`` passes of the filter."""
     levels = [np.asarray(theta, dtype=np.float64)]
     for _ in range(scales - 1):
-        levels.append(lowpass(levels[-1], weights, closed=closed))
+        levels.append(lowpass(levels[-1], weights, closed=closed, causal=causal))
     return np.stack(levels)
 
 

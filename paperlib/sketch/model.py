@@ -23,10 +23,12 @@ the paper's *"linked list"* of transition probabilities. How the list weighs the
   its probability, the chain mixes training curves at every step, and a sketch of a training leaf is not
   reconstructed (Fig. 6); and a state's predecessor is among its most similar states, whose successor is the
   state itself, so the chain repeats states (straight stutters in the curve).
-- ``"sharp"`` (default, ours): in proportion to ``D ** SHARPNESS``, and never to the state itself (the
-  predecessor's move is dropped). Raising D to a power keeps the ranking of eq. (4) and makes the
-  state's own successor dominate unless another state is nearly as similar: exact where the training
-  data is unambiguous, mixing where it is not.
+- ``"sharp"`` (default, ours): in proportion to ``D ** SHARPNESS``, and within the state's own curve only
+  to its successor: the other states of its curve within ``order`` samples are similar because their
+  histories overlap with its own, and moving to their successors would repeat the state (the
+  predecessor's successor is the state itself), skip samples or go back. Raising D to a power keeps the
+  ranking of eq. (4) and makes the state's own successor dominate unless another curve has a nearly as
+  similar state: exact where the training data is unambiguous, mixing where it is not.
 
 To find them without comparing every pair of states
 (``N^2`` comparisons of ``scales x order`` angles), states are embedded in a low-dimensional Euclidean space
@@ -88,6 +90,8 @@ class SketchModel:
         Standard deviation (radians) of eq. (4)'s Gaussian G.
     filter : ndarray
         The low-pass filter's normalised weights.
+    causal, subsample : bool
+        Whether the filter is causal and the history of coarser scales subsampled (:func:`train`).
     closed : bool
         Whether the training curves were read cyclically.
     samples_per_curve : int
@@ -112,7 +116,8 @@ class SketchModel:
         How the transitions weigh the most similar states (``"sharp"`` or ``"paper"``, see the module).
     transition : ndarray, shape (N, k)
         The weight of the move from each state to the successor of each of its most similar states
-        (unnormalised; 0 for a move back to the state itself under ``"sharp"``).
+        (unnormalised; under ``"sharp"`` 0 for the moves along the state's own curve other than to its
+        successor).
     extent_ratio : float
         Median over the training curves of the radius of gyration of the curve at the steering scale (its
         angles filtered, integrated back with the same arc length) over that of the curve itself, >= 1 for
@@ -126,6 +131,8 @@ class SketchModel:
     weights: np.ndarray
     similarity_sigma: float
     filter: np.ndarray
+    causal: bool
+    subsample: bool
     closed: bool
     samples_per_curve: int
     curves: tuple
@@ -182,10 +189,11 @@ def _check_weights(weights, scales: int, order: int) -> np.ndarray:
     return weights
 
 
-def _curve_angles(curve, samples: int, scales: int, taps, closed: bool, name: str):
+def _curve_angles(curve, samples: int, scales: int, taps, closed: bool, causal: bool, name: str):
     """One training curve resampled, and its angles at every scale, shape ``(samples or samples - 1, scales)``."""
     points = resample_simple(curve, samples, closed=closed, name=name)
-    return multiscale_angles(tangent_angles(points, closed=closed), scales, taps, closed=closed).T, points
+    theta = tangent_angles(points, closed=closed)
+    return multiscale_angles(theta, scales, taps, closed=closed, causal=causal).T, points
 
 
 def train(
@@ -200,6 +208,8 @@ def train(
     similarity_sigma: float = 0.1,
     neighbours: int = 12,
     transitions: str = "sharp",
+    causal: bool = False,
+    subsample: bool = False,
     samples_per_curve: int = 256,
     closed: bool = True,
 ) -> SketchModel:
@@ -229,6 +239,13 @@ def train(
     transitions : {"sharp", "paper"}
         How the transitions weigh them (module docstring): ``"paper"`` in proportion to D, ``"sharp"`` (ours)
         to ``D ** SHARPNESS`` without moves back to the state itself.
+    causal : bool
+        Filter with the paper's causal filter (section 3, eq. 2: each scale lags the finer one by the
+        filter's half width) instead of our centred one (:func:`.curves.lowpass`).
+    subsample : bool
+        Read the history of scale ``s`` every ``2 ** s`` samples (the paper's Psi *"requires less sampling
+        points"* at coarser scales, eq. 2: a state of order O then spans ``(O - 1) 2 ** (S - 1)`` samples at the
+        coarsest scale) instead of every sample at every scale.
     samples_per_curve : int
         Samples per training curve (> order).
     closed : bool
@@ -252,6 +269,9 @@ def train(
     if steering_scale >= scales:
         raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
     similarity_sigma = positive_number(similarity_sigma, "similarity_sigma")
+    for flag, name in ((causal, "causal"), (subsample, "subsample")):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"{name} must be True or False, got {flag!r}")
     if transitions not in TRANSITIONS:
         raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
     weights = _check_weights(weights, scales, order)
@@ -263,30 +283,42 @@ def train(
     angle_blocks, resampled = [], []
     for k, curve in enumerate(curves):
         curve = check_curve(curve, closed=closed, name=f"training curve {k}")
-        angles, points = _curve_angles(curve, samples, scales, taps, closed, f"training curve {k}")
+        angles, points = _curve_angles(curve, samples, scales, taps, closed, causal, f"training curve {k}")
         angle_blocks.append(angles)
         resampled.append(points)
-    table = _state_table(angle_blocks, order, closed)
+    strides = 2 ** np.arange(scales) if subsample else np.ones(scales, dtype=np.int64)
+    if not closed and samples - 1 <= (order - 1) * int(strides[-1]):
+        raise ValueError(f"open curves of {samples} samples hold no state of order {order} with subsample=True "
+                         f"(the coarsest scale's history spans {(order - 1) * int(strides[-1]) + 1} samples)")
+    table = _state_table(angle_blocks, order, closed, strides)
     neighbour_index, similarity = _most_similar(table["states"], table["angles"][:, steering_scale],
                                                 weights, similarity_sigma, neighbours)
     return SketchModel(
         order=order, scales=scales, steering_scale=steering_scale, weights=weights,
-        similarity_sigma=similarity_sigma, filter=taps, closed=closed, samples_per_curve=samples,
+        similarity_sigma=similarity_sigma, filter=taps, causal=bool(causal), subsample=bool(subsample),
+        closed=closed, samples_per_curve=samples,
         curves=tuple(resampled), states=table["states"], angles=table["angles"], curve=table["curve"], sample=table["sample"],
         position=table["position"], successor=table["successor"], neighbours=neighbour_index,
         similarity=similarity, transitions=transitions,
-        transition=_transition_weights(neighbour_index, similarity, table["successor"], transitions),
+        transition=_transition_weights(neighbour_index, similarity, table, transitions, order, samples, closed),
         extent_ratio=_extent_ratio(resampled, angle_blocks, steering_scale, closed),
     )
 
 
-def _transition_weights(neighbours, similarity, successor, transitions: str) -> np.ndarray:
+def _transition_weights(neighbours, similarity, table: dict, transitions: str, order: int, samples: int,
+                        closed: bool) -> np.ndarray:
     """The weight of each move to a similar state's successor (see the module docstring)."""
     if transitions == "paper":
         return similarity.copy()
     weights = similarity**SHARPNESS
-    back_to_itself = successor[neighbours] == np.arange(len(neighbours))[:, None]
-    weights[back_to_itself] = 0.0
+    state = np.arange(len(neighbours))[:, None]
+    gap = np.abs(table["sample"][neighbours] - table["sample"][state])
+    if closed:
+        gap = np.minimum(gap, samples - gap)
+    # a state's neighbours on its own curve within its history are similar because their histories overlap,
+    # not because they continue it otherwise: moving to their successors would repeat, skip or go back
+    own_curve = (table["curve"][neighbours] == table["curve"][state]) & (gap <= order) & (neighbours != state)
+    weights[own_curve] = 0.0
     return weights
 
 
@@ -301,21 +333,25 @@ def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> fl
     return float(np.median(ratios))
 
 
-def _state_table(angle_blocks, order: int, closed: bool) -> dict:
-    """Every state of every curve: current angles, history matrix, curve, sample, position, successor."""
+def _state_table(angle_blocks, order: int, closed: bool, strides: np.ndarray) -> dict:
+    """Every state of every curve: current angles, history matrix, curve, sample, position, successor.
+
+    Scale ``s`` looks back ``tau * strides[s]`` samples at history ``tau``.
+    """
     columns = {key: [] for key in ("angles", "states", "curve", "sample", "position", "successor")}
     first_state = 0
     for k, angles in enumerate(angle_blocks):
         n = len(angles)
-        samples = np.arange(n) if closed else np.arange(order - 1, n)
-        history = samples[:, None] - np.arange(order)
+        reach = (order - 1) * int(strides.max())
+        samples = np.arange(n) if closed else np.arange(reach, n)
+        history = samples[:, None, None] - np.arange(order)[None, :, None] * strides[None, None, :]   # (t, tau, s)
         if closed:
             # the history of an early sample wraps to the curve's end: unwrap it by the curve's total turning
             turning = angles[-1, :] + wrap_angle(angles[0, :] - angles[-1, :]) - angles[0, :]
             laps = np.floor_divide(history, n)
-            states = angles[history % n] + laps[..., None] * turning
+            states = angles[history % n, np.arange(angles.shape[1])] + laps * turning
         else:
-            states = angles[history]
+            states = angles[history, np.arange(angles.shape[1])]
         successor = first_state + np.arange(1, len(samples) + 1)
         if closed:
             successor[-1] = first_state

@@ -29,11 +29,11 @@ behaviour as an option:
 - ``closure="distribute"`` (the default for a closed sketch): the gap between the curve's end and its start
   is spread evenly along the curve, every segment moving by the same small vector, so no kink appears
   (``"none"``: the gap stays, the paper);
-- ``untangle=True``: where the curve crosses itself, the detail (the output's direction minus the sketch's)
-  is halved over ``UNTANGLE_REACH`` samples on each side of both crossing segments, and the curve rebuilt,
-  until it is simple; with the detail gone it is the resampled sketch, which is simple, so this ends
-  (:data:`UNTANGLE_ROUNDS` halvings, then the detail near the remaining crossings is dropped over a reach
-  that doubles until the curve is simple).
+- ``untangle=True``: where the curve crosses itself, two crossing segments close a loop (the shorter
+  stretch between them); the detail on it (the output's direction minus the sketch's) is halved and the
+  curve rebuilt, until it is simple (after :data:`UNTANGLE_ROUNDS` halvings the detail on a loop is dropped;
+  if crossings remain on loops without detail, it is dropped everywhere: the resampled sketch, which is
+  simple, so this ends).
 
 Two situations the paper does not cover get a documented answer: when no predicted state survives the
 conditioning (all probabilities underflow, the chain has lost the sketch), the chain restarts from step 2
@@ -75,8 +75,8 @@ __all__ = ["Elaboration", "coarsen", "copied_runs", "crossing_segments", "elabor
 
 MODES = ("max", "sample")
 CLOSURES = (None, "distribute", "none")
-#: Halvings of the detail near crossings before it is dropped there (0.5 ** 8 < 0.4 %), and how many samples
-#: on each side of a crossing segment "near" covers.
+#: Halvings of the detail on a loop before it is dropped there (0.5 ** 8 < 0.4 %), and the samples beyond
+#: the two crossing segments that the loop's stretch includes.
 UNTANGLE_ROUNDS, UNTANGLE_REACH = 8, 4
 COARSE = ("state", "sketch")
 
@@ -256,55 +256,53 @@ def elaborate(
     angles = phi + gain * (angles - phi)
     return Elaboration(points=path, angles=angles, sketch=resampled, steering=phi, states=states,
                        closed=closed, closing_gap=gap, restarts=int(restarts),
-                       crossings=int(len(crossing) // 2), untangled=int(np.count_nonzero(gain < 1.0)))
+                       crossings=len(crossing), untangled=int(np.count_nonzero(gain < 1.0)))
 
 
-def _untangle(build, gain: np.ndarray, crossing: np.ndarray, closed: bool):
-    """Reduce ``gain`` (in place) near the crossings until ``build()`` gives a simple curve.
+def _untangle(build, gain: np.ndarray, pairs: np.ndarray, closed: bool):
+    """Reduce ``gain`` (in place) on the loops the crossings close until ``build()`` gives a simple curve.
 
-    The detail near both segments of every crossing is halved ``UNTANGLE_ROUNDS`` times; crossings that
-    remain lose the detail near them over a reach that doubles each round, up to the whole curve (the
-    resampled sketch, which is simple).
+    Two crossing segments close a loop: the shorter stretch of curve between them (on a closed curve, either
+    way round). Its detail is halved, and dropped once below ``0.5 ** UNTANGLE_ROUNDS``; when the loops of
+    the remaining crossings have no detail left, the detail is dropped everywhere (the resampled sketch,
+    which is simple), so this ends.
     """
-    reach, halvings = UNTANGLE_REACH, 0
     path = None
-    while crossing.size:
-        near = _near(crossing, gain.size, reach, closed)
-        if halvings < UNTANGLE_ROUNDS:
-            gain[near] *= 0.5
-            halvings += 1
-        elif reach < gain.size:
-            gain[near] = 0.0
-            reach *= 2
-        else:
+    while pairs.size:
+        loops = _loops(pairs, gain.size, closed)
+        if not gain[loops].any():
             gain[:] = 0.0
+        gain[loops] *= 0.5
+        gain[gain < 0.5**UNTANGLE_ROUNDS] = 0.0
         path, _ = build()
-        crossing = crossing_segments(path, closed=closed)
+        pairs = crossing_segments(path, closed=closed)
         if not gain.any():
             break
-    return path, crossing
+    return path, pairs
 
 
-def _near(segments: np.ndarray, n: int, reach: int, closed: bool) -> np.ndarray:
-    """The samples within ``reach`` of any of the given segments (cyclically on a closed curve)."""
-    offsets = np.arange(-reach, reach + 1)
-    around = (segments[:, None] + offsets).ravel()
-    return np.unique(around % n if closed else around[(around >= 0) & (around < n)])
+def _loops(pairs: np.ndarray, n: int, closed: bool) -> np.ndarray:
+    """The samples on the shorter stretch between the two segments of every crossing pair, margins included."""
+    samples = []
+    for first, second in pairs:
+        inside = np.arange(first - UNTANGLE_REACH, second + UNTANGLE_REACH + 1)
+        if closed and n - (second - first) < second - first:   # shorter the other way round
+            inside = np.arange(second - UNTANGLE_REACH, first + n + UNTANGLE_REACH + 1)
+        samples.append(inside % n if closed else inside[(inside >= 0) & (inside < n)])
+    return np.unique(np.concatenate(samples))
 
 
 def crossing_segments(points, *, closed: bool) -> np.ndarray:
-    """The segments of a polyline that cross another of its segments, once per crossing pair and segment.
+    """The pairs of segments of a polyline that cross, shape ``(m, 2)``, first segment first (empty: simple).
 
     Segment ``i`` joins point ``i`` to point ``i + 1`` (to point 0 for the last segment of a closed ring).
     Segments that share an end point count only if they overlap along a line (a turn back on itself).
-    Returns an array holding both segments of every crossing pair (so its length is twice the number of
-    pairs); empty for a simple curve.
     """
     points = np.asarray(points, dtype=np.float64)
     path = np.vstack([points, points[:1]]) if closed else points
     line = shapely.LinearRing(path) if closed else shapely.LineString(path)
     if line.is_simple:
-        return np.empty(0, dtype=np.int64)
+        return np.empty((0, 2), dtype=np.int64)
     segments = shapely.linestrings(np.stack([path[:-1], path[1:]], axis=1))
     first, second = shapely.STRtree(segments).query(segments, predicate="intersects")
     n = len(segments)
@@ -316,7 +314,7 @@ def crossing_segments(points, *, closed: bool) -> np.ndarray:
     if adjacent.any():   # neighbours meet at their shared point; they cross only if they overlap
         overlap = shapely.length(shapely.intersection(segments[first[adjacent]], segments[second[adjacent]])) > 0
         pairs[np.flatnonzero(adjacent)[overlap]] = True
-    return np.concatenate([first[pairs], second[pairs]]).astype(np.int64)
+    return np.column_stack([first[pairs], second[pairs]]).astype(np.int64)
 
 
 def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: bool | None = None) -> np.ndarray:
@@ -334,7 +332,7 @@ def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: 
     n_samples = model.samples_per_curve if n_samples is None else n_samples
     points = resample_simple(curve, n_samples, closed=closed)   # as training reads its curves
     theta = tangent_angles(points, closed=closed)
-    coarse = multiscale_angles(theta, model.steering_scale + 1, model.filter, closed=closed)[-1]
+    coarse = multiscale_angles(theta, model.steering_scale + 1, model.filter, closed=closed, causal=model.causal)[-1]
     lengths = np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T)
     path = integrate_angles(coarse, float(lengths.mean()), start=points[0])
     return match_size(close_curve(path) if closed else path, points)
