@@ -276,6 +276,10 @@ def test_crossing_segments_finds_the_crossing_pair_and_nothing_on_a_simple_curve
     np.testing.assert_array_equal(crossing_segments(bow_tie, closed=True), [[0, 2]])
     back_on_itself = np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]])
     np.testing.assert_array_equal(crossing_segments(back_on_itself, closed=False), [[0, 1]])
+    with pytest.raises(ValueError, match="at least 3"):
+        crossing_segments(square[:2], closed=True)
+    with pytest.raises(ValueError, match="NaN"):
+        crossing_segments([[0.0, 0.0], [np.nan, 1.0]], closed=False)
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -288,6 +292,8 @@ def test_untangled_elaborations_are_simple_and_the_paper_rules_are_not_always(mo
     np.testing.assert_array_equal(raw.states, result.states)
     assert raw.crossings == len(crossing_segments(raw.points, closed=True))
     assert (raw.crossings == 0) == (result.untangled == 0)
+    with pytest.raises(TypeError, match="untangle"):
+        elaborate(model, blob, n_samples=400, untangle="yes")
 
 
 def test_elaboration_is_reproducible_and_seeds_differ(model):

@@ -56,7 +56,7 @@ import numpy as np
 import shapely
 
 from .._checks import integer_at_least, positive_number
-from ..geometry import read_svg
+from ..geometry import as_points, read_svg
 from ._kernels import steer
 from .curves import (
     check_curve,
@@ -218,6 +218,8 @@ def elaborate(
     _check_choice(mode, "mode", MODES)
     _check_choice(closure, "closure", CLOSURES)
     _check_choice(coarse, "coarse", COARSE)
+    if not isinstance(untangle, (bool, np.bool_)):
+        raise TypeError(f"untangle must be True or False, got {untangle!r}")
     if window is not None:
         window = positive_number(window, "window")
         if window > 0.5:
@@ -297,8 +299,13 @@ def crossing_segments(points, *, closed: bool) -> np.ndarray:
 
     Segment ``i`` joins point ``i`` to point ``i + 1`` (to point 0 for the last segment of a closed ring).
     Segments that share an end point count only if they overlap along a line (a turn back on itself).
+
+    Raises
+    ------
+    ValueError
+        If ``points`` is not finite ``(n, 2)`` coordinates with at least 3 points (closed) or 2 (open).
     """
-    points = np.asarray(points, dtype=np.float64)
+    points = as_points(points, name="points", min_points=3 if closed else 2)
     path = np.vstack([points, points[:1]]) if closed else points
     line = shapely.LinearRing(path) if closed else shapely.LineString(path)
     if line.is_simple:
