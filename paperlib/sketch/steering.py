@@ -11,10 +11,12 @@ algorithm, as :func:`elaborate` runs it:
 3. threshold: keep the ``top`` most probable states, renormalised;
 4. instantiate the sample: the finest-scale angle of the most probable state (``mode="max"``, the paper's
    choice) or of a state drawn with its probability (``mode="sample"``: different seeds give different
-   elaborations);
+   elaborations); with the model's ``"sharp"`` transitions, never the previous sample's state again (a
+   repeated state repeats its angle: a straight stutter);
 5. for every next sample, predict with the transition probabilities, eq. (3): the probability of each
-   candidate ``j`` flows to the successors of its most similar states, in proportion to their similarity
-   D (eq. 4); then condition and threshold as in 2-3, and instantiate as in 4.
+   candidate ``j`` flows to the successors of its most similar states, in proportion to their transition
+   weights (:attr:`.model.SketchModel.transition`: eq. 4's D for ``transitions="paper"``); then condition and
+   threshold as in 2-3, and instantiate as in 4.
 
 The instantiated angles are integrated from the sketch's first point with the sketch's sample spacing. By
 default the result is then scaled to the sketch's radius of gyration and moved onto its centroid
