@@ -2,6 +2,7 @@
 #   make test        ruff, then pytest including the notebooks run through papermill (CI runs this)
 #   make reproduce   every notebook at paper quality -> figures/ and figures/INDEX.md
 #   make bench       speed measurements -> benchmarks/results.json
+#   make fuzz        the full fuzz campaign (>= 10,000 Hypothesis inputs) -> build/fuzz/summary.md
 #   make strip       remove outputs from the notebook sources
 
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
@@ -10,7 +11,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 JOBS ?= 2
 
-.PHONY: test lint reproduce reproduce-ci bench strip clean
+.PHONY: test lint reproduce reproduce-ci bench fuzz strip clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -32,6 +33,10 @@ reproduce-ci: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
+
+# every public callable, 34 inputs each (>= 10,000 in all), 6 GiB and 20 s per case (tests/fuzz_harness.py)
+fuzz: $(STAMP)
+	$(BIN)/python tests/fuzz_harness.py --examples 34 --jobs $(JOBS) --out build/fuzz
 
 strip: $(STAMP)
 	$(BIN)/jupyter nbconvert --clear-output --inplace notebooks/*.ipynb

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import math
 from numbers import Integral
+
+import numpy as np
 
 __all__ = ["integer_at_least", "positive_number"]
 
@@ -25,3 +28,163 @@ def integer_at_least(value, name: str, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, Integral) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return int(value)
+
+
+# --------------------------------------------------------------------------- added for issue 21
+# Everything below is shared by the public functions of paperlib: one place for each check, so the
+# same bad input gets the same message wherever it enters. Each helper returns the normalised value
+# and raises ValueError (a bad value) or TypeError (a value of the wrong kind) naming the parameter.
+
+__all__ += [
+    "as_generator",
+    "check_budget",
+    "check_edges",
+    "check_flag",
+    "check_rng",
+    "finite_array",
+    "integer_in_range",
+    "load_json",
+    "budget",
+    "point_array",
+]
+
+def integer_in_range(value, name: str, minimum: int, maximum: int) -> int:
+    """``value`` as an int, or a ValueError naming ``name`` unless it is an integer in ``[minimum, maximum]``."""
+    if isinstance(value, bool) or not isinstance(value, Integral) or not minimum <= value <= maximum:
+        raise ValueError(f"{name} must be an integer in [{minimum}, {maximum}], got {value!r}")
+    return int(value)
+
+
+def check_flag(value, name: str) -> bool:
+    """``value`` as a bool, or a TypeError naming ``name`` unless it is True or False (numpy bools too)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def check_budget(needed, limit, name: str, what: str) -> None:
+    """ValueError when ``needed`` exceeds the budget ``limit``, passed as the keyword ``name``.
+
+    Parameters
+    ----------
+    needed : int or float
+        What the call would use (points, bytes, bins, samples...), estimated before allocating.
+    limit : int or float
+        The ceiling in force; ``name`` is the keyword argument that sets it.
+    name : str
+        The budget's keyword argument, named in the message so the caller knows how to raise it.
+    what : str
+        What is counted, e.g. ``"flattened points"``.
+    """
+    if needed > limit:
+        raise ValueError(f"this call needs {needed:,} {what}, above the budget {name}={limit:,}; "
+                         f"pass a larger {name}= to allow it (or reduce the input)")
+
+
+def budget(value, name: str) -> int:
+    """A budget keyword's value as an int >= 1 (the ceilings themselves are validated too)."""
+    return integer_at_least(value, name, 1)
+
+
+def as_generator(rng, name: str = "rng") -> np.random.Generator:
+    """The one normalisation of a random source: ``numpy.random.default_rng`` after a type check.
+
+    Parameters
+    ----------
+    rng : None, int, numpy.random.SeedSequence or numpy.random.Generator
+        None draws fresh entropy; a non-negative int or a SeedSequence gives the same stream every
+        time; a Generator is used as it is (the same object, so the caller's stream advances).
+    name : str
+        The parameter's name, for the message.
+
+    Returns
+    -------
+    numpy.random.Generator
+        Exactly ``numpy.random.default_rng(rng)``: same seed, same numbers, bit for bit.
+
+    Raises
+    ------
+    TypeError
+        For any other kind of value: strings, floats, bools, a legacy ``numpy.random.RandomState``
+        (which cannot spawn independent streams; pass ``numpy.random.default_rng(seed)`` instead).
+    ValueError
+        For a negative int seed.
+    """
+    return np.random.default_rng(check_rng(rng, name))
+
+
+def check_rng(rng, name: str = "rng"):
+    """``rng`` unchanged (an int as a Python int) if it is a valid random source for :func:`as_generator`.
+
+    Raises the TypeError or ValueError :func:`as_generator` documents; creates no generator, so a
+    caller that spawns seed sequences itself (``paperlib.parallel``) checks with the same rule.
+    """
+    if rng is None or isinstance(rng, (np.random.Generator, np.random.SeedSequence)):
+        return rng
+    if isinstance(rng, np.random.RandomState):
+        raise TypeError(f"{name} must be None, an int seed, a SeedSequence or a numpy.random.Generator; a legacy "
+                        f"RandomState cannot spawn independent streams: pass numpy.random.default_rng(seed)")
+    if isinstance(rng, (bool, np.bool_)) or not isinstance(rng, Integral):
+        raise TypeError(f"{name} must be None, an int seed, a SeedSequence or a numpy.random.Generator, "
+                        f"got {type(rng).__name__} {rng!r:.80}")
+    if rng < 0:
+        raise ValueError(f"{name} must be a non-negative int seed, got {rng!r}")
+    return int(rng)
+
+
+def finite_array(values, name: str, *, ndim: int | None = None, min_size: int = 0) -> np.ndarray:
+    """``values`` as a float64 array, or a ValueError naming ``name`` unless numeric, finite, of ``ndim``."""
+    try:
+        array = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be an array of numbers, got {type(values).__name__}") from None
+    if ndim is not None and array.ndim != ndim:
+        raise ValueError(f"{name} must be {ndim}-D ({ndim}-dimensional), got shape {array.shape}")
+    if array.size < min_size:
+        raise ValueError(f"{name} needs at least {min_size} values, got {array.size}")
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return array
+
+
+def point_array(values, name: str, *, min_points: int = 0) -> np.ndarray:
+    """``values`` as a finite float64 ``(n, 2)`` array with ``n >= min_points``, or a ValueError naming ``name``."""
+    array = finite_array(values, name)
+    if array.ndim != 2 or array.shape[1] != 2:
+        raise ValueError(f"{name} must be an (n, 2) array of points, got shape {array.shape}")
+    if len(array) < min_points:
+        raise ValueError(f"{name} needs at least {min_points} points, got {len(array)}")
+    return array
+
+
+def check_edges(edges, n_nodes: int, name: str = "edges") -> np.ndarray:
+    """``edges`` as an int64 ``(m, 2)`` array of integer node pairs, each in ``[0, n_nodes)``, or a ValueError."""
+    try:
+        array = np.asarray(edges)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs") from None
+    if array.size == 0:
+        return np.empty((0, 2), dtype=np.int64)
+    if array.ndim != 2 or array.shape[1] != 2 or not np.issubdtype(array.dtype, np.integer):
+        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs, got {array.dtype} of shape "
+                         f"{array.shape}")
+    if array.min() < 0 or array.max() >= n_nodes:
+        raise ValueError(f"{name} name nodes outside [0, {n_nodes}): {int(array.min())} to {int(array.max())}")
+    return array.astype(np.int64)
+
+
+def load_json(text, what: str):
+    """Parse JSON text, mapping every parser failure (syntax, nesting too deep) to a ValueError naming ``what``.
+
+    ``what`` is a noun phrase such as ``"a JSON script"``: messages read ``"not a JSON script: ..."``.
+    """
+    if isinstance(text, (bytes, bytearray)):
+        text = bytes(text).decode("utf-8", errors="replace")
+    if not isinstance(text, str):
+        raise TypeError(f"{what} must be JSON text (str), got {type(text).__name__}")
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"not {what}: {exc}") from None
+    except RecursionError:
+        raise ValueError(f"{what} nests too deeply to be read") from None

@@ -45,11 +45,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import betainc, betaln
 
-from paperlib._checks import positive_number
+from paperlib._checks import budget, check_budget, finite_array, positive_number
 
 __all__ = [
     "HistogramModes",
     "Interval",
+    "MAX_BINS",
     "gap_log10_nfa",
     "histogram_modes",
     "interval_labels",
@@ -68,6 +69,10 @@ _SMALLEST_DIRECT_TAIL = 1e-280
 _CONTINUED_FRACTION_TOLERANCE = 1e-15
 _CONTINUED_FRACTION_MAX_TERMS = 100_000
 _PRIOR_SUM_TOLERANCE = 1e-9
+#: Default budget of the NFA tables: the most histogram bins ``L``. The tables hold all ``L (L + 1) / 2``
+#: intervals in ``(L, L)`` arrays (about 100 L^2 bytes at the peak: 1.7 GB at 4096 bins). Raise it with the
+#: ``max_bins`` keyword of every function that builds them.
+MAX_BINS = 4096
 
 
 # --------------------------------------------------------------------------- results
@@ -241,7 +246,7 @@ def _lentz_incomplete_beta_fraction(a: np.ndarray, b: np.ndarray, x: np.ndarray)
 # --------------------------------------------------------------------------- NFA tables
 
 
-def interval_log10_nfa(counts, prior=None) -> np.ndarray:
+def interval_log10_nfa(counts, prior=None, *, max_bins: int = MAX_BINS) -> np.ndarray:
     """log10 NFA of every interval of bins as a candidate mode: Hurtut 2009 eq. (1).
 
     ``NFA[a, b] = N B(M, k_ab, p_ab)`` with ``N = L (L + 1) / 2`` tested intervals,
@@ -254,6 +259,9 @@ def interval_log10_nfa(counts, prior=None) -> np.ndarray:
     prior : array_like of float, shape (L,), optional
         Bin probabilities of the background model (positive, summing to 1);
         uniform by default, as in the paper.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`); the tables are
+        ``(L, L)``, so a larger histogram raises ValueError before allocating them.
 
     Returns
     -------
@@ -266,11 +274,11 @@ def interval_log10_nfa(counts, prior=None) -> np.ndarray:
     .. [1] Hurtut et al. 2009, section 2.2, eq. (1).
     .. [2] Desolneux, Moisan & Morel 2003; 2008, chapter 7.
     """
-    counts, prior = _validated_histogram(counts, prior)
+    counts, prior = _validated_histogram(counts, prior, max_bins)
     return _log10_nfa_tables(counts, *_interval_counts_and_masses(counts, prior))[0]
 
 
-def gap_log10_nfa(counts, prior=None) -> np.ndarray:
+def gap_log10_nfa(counts, prior=None, *, max_bins: int = MAX_BINS) -> np.ndarray:
     """log10 NFA of every interval of bins as a candidate gap.
 
     ``NFA[a, b] = N B(M, M - k_ab, 1 - p_ab)``, i.e. ``N P[Binomial(M, p_ab) <= k_ab]``:
@@ -283,7 +291,7 @@ def gap_log10_nfa(counts, prior=None) -> np.ndarray:
     .. [1] Hurtut et al. 2009, section 2.2.
     .. [2] Desolneux, Moisan & Morel 2008, chapter 7.
     """
-    counts, prior = _validated_histogram(counts, prior)
+    counts, prior = _validated_histogram(counts, prior, max_bins)
     return _log10_nfa_tables(counts, *_interval_counts_and_masses(counts, prior))[1]
 
 
@@ -326,7 +334,7 @@ def _upper_triangle(values: np.ndarray, n_bins: int, *, fill) -> np.ndarray:
 # --------------------------------------------------------------------------- detection
 
 
-def meaningful_intervals(counts, epsilon: float = 1.0, prior=None) -> list[Interval]:
+def meaningful_intervals(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> list[Interval]:
     """The epsilon-meaningful intervals of a histogram (Hurtut 2009 eq. (1)).
 
     Bins ``a..b`` form an epsilon-meaningful interval when they hold more samples than
@@ -340,6 +348,9 @@ def meaningful_intervals(counts, epsilon: float = 1.0, prior=None) -> list[Inter
         Threshold on the number of false alarms (> 0); 1 is the paper's choice.
     prior : array_like of float, shape (L,), optional
         Bin probabilities (positive, summing to 1); uniform by default.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`, see
+        :func:`interval_log10_nfa`). The other detectors below take it too.
 
     Returns
     -------
@@ -351,11 +362,11 @@ def meaningful_intervals(counts, epsilon: float = 1.0, prior=None) -> list[Inter
     .. [1] Hurtut et al. 2009, section 2.2, eq. (1).
     .. [2] Desolneux, Moisan & Morel 2003; 2008, chapter 7.
     """
-    detection = _detect(counts, epsilon, prior)
+    detection = _detect(counts, epsilon, prior, max_bins)
     return _intervals_where(detection.is_interval, detection.log10_nfa_interval)
 
 
-def meaningful_gaps(counts, epsilon: float = 1.0, prior=None) -> list[Interval]:
+def meaningful_gaps(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> list[Interval]:
     """The epsilon-meaningful gaps of a histogram.
 
     Bins ``a..b`` form an epsilon-meaningful gap when they hold fewer samples than the
@@ -368,11 +379,11 @@ def meaningful_gaps(counts, epsilon: float = 1.0, prior=None) -> list[Interval]:
     .. [1] Hurtut et al. 2009, section 2.2.
     .. [2] Desolneux, Moisan & Morel 2008, chapter 7.
     """
-    detection = _detect(counts, epsilon, prior)
+    detection = _detect(counts, epsilon, prior, max_bins)
     return _intervals_where(detection.is_gap, detection.log10_nfa_gap)
 
 
-def meaningful_modes(counts, epsilon: float = 1.0, prior=None) -> list[Interval]:
+def meaningful_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> list[Interval]:
     """The epsilon-meaningful modes: meaningful intervals that contain no meaningful gap.
 
     Parameters as in :func:`meaningful_intervals`.
@@ -382,11 +393,11 @@ def meaningful_modes(counts, epsilon: float = 1.0, prior=None) -> list[Interval]
     .. [1] Hurtut et al. 2009, section 2.2.
     .. [2] Desolneux, Moisan & Morel 2008, chapter 7.
     """
-    detection = _detect(counts, epsilon, prior)
+    detection = _detect(counts, epsilon, prior, max_bins)
     return _intervals_where(detection.is_mode, detection.log10_nfa_interval)
 
 
-def maximal_meaningful_modes(counts, epsilon: float = 1.0, prior=None) -> list[Interval]:
+def maximal_meaningful_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> list[Interval]:
     """The maximal meaningful modes of a histogram: Hurtut 2009's "MM-modes".
 
     A meaningful mode ``I`` is maximal when
@@ -415,7 +426,7 @@ def maximal_meaningful_modes(counts, epsilon: float = 1.0, prior=None) -> list[I
     .. [2] Desolneux, Moisan & Morel 2003 (maximal meaningful intervals); 2008,
        chapter 7 (maximal meaningful modes).
     """
-    detection = _detect(counts, epsilon, prior)
+    detection = _detect(counts, epsilon, prior, max_bins)
     return _intervals_where(detection.is_maximal_mode, detection.log10_nfa_interval)
 
 
@@ -448,7 +459,7 @@ def outlier_intervals(counts, modes: Sequence[Interval | tuple[int, int]]) -> li
     return [(start, end) for start, end in runs if counts[start : end + 1].sum() > 0]
 
 
-def histogram_modes(counts, epsilon: float = 1.0, prior=None) -> HistogramModes:
+def histogram_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> HistogramModes:
     """MM-modes and outlier intervals of a histogram, as Hurtut 2009 categorizes by.
 
     Parameters as in :func:`meaningful_intervals`.
@@ -463,7 +474,7 @@ def histogram_modes(counts, epsilon: float = 1.0, prior=None) -> HistogramModes:
     .. [1] Hurtut et al. 2009, section 2.2, eq. (1) and the categorization algorithm.
     .. [2] Desolneux, Moisan & Morel 2003; 2008, chapter 7.
     """
-    detection = _detect(counts, epsilon, prior)
+    detection = _detect(counts, epsilon, prior, max_bins)
     modes = _intervals_where(detection.is_maximal_mode, detection.log10_nfa_interval)
     detection.counts.setflags(write=False)  # the result is frozen, its arrays too
     detection.prior.setflags(write=False)
@@ -533,8 +544,8 @@ class _Detection:
     is_maximal_mode: np.ndarray
 
 
-def _detect(counts, epsilon, prior) -> _Detection:
-    counts, prior = _validated_histogram(counts, prior)
+def _detect(counts, epsilon, prior, max_bins) -> _Detection:
+    counts, prior = _validated_histogram(counts, prior, max_bins)
     log10_epsilon = np.log10(positive_number(epsilon, "epsilon"))
     inside, mass = _interval_counts_and_masses(counts, prior)
     log10_nfa_interval, log10_nfa_gap = _log10_nfa_tables(counts, inside, mass)
@@ -616,9 +627,12 @@ def _runs_of_true(flags: np.ndarray) -> list[tuple[int, int]]:
 # --------------------------------------------------------------------------- validation
 
 
-def _validated_histogram(counts, prior) -> tuple[np.ndarray, np.ndarray]:
-    """Counts as int64 and prior as float64 (uniform if None), both checked."""
+def _validated_histogram(counts, prior, max_bins=None) -> tuple[np.ndarray, np.ndarray]:
+    """Counts as int64 and prior as float64 (uniform if None), both checked; at most ``max_bins`` bins
+    when given (the NFA tables are quadratic in the bins, see :data:`MAX_BINS`)."""
     values = _as_finite_vector(counts, "counts", min_size=2)
+    if max_bins is not None:
+        check_budget(values.size, budget(max_bins, "max_bins"), "max_bins", "histogram bins")
     if np.any(values < 0):
         raise ValueError("counts must be non-negative")
     if np.any(values != np.round(values)):
@@ -639,17 +653,7 @@ def _validated_histogram(counts, prior) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _as_finite_vector(values, name: str, *, min_size: int) -> np.ndarray:
-    try:
-        array = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a 1-D array of numbers") from None
-    if array.ndim != 1:
-        raise ValueError(f"{name} must be 1-D, got shape {array.shape}")
-    if array.size < min_size:
-        raise ValueError(f"{name} needs at least {min_size} entries, got {array.size}")
-    if not np.isfinite(array).all():
-        raise ValueError(f"{name} contains NaN or infinite values")
-    return array
+    return finite_array(values, name, ndim=1, min_size=min_size)
 
 
 def _as_integers(values, name: str) -> np.ndarray:

@@ -18,6 +18,11 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
 
+from paperlib._checks import check_rng, integer_in_range
+
+#: The most seed sequences :func:`spawn_seeds` makes in one call (each run of :func:`run_many` takes one).
+MAX_SEEDS = 10_000_000
+
 __all__ = ["run_many", "spawn_seeds"]
 
 
@@ -32,14 +37,12 @@ def spawn_seeds(rng, n: int) -> list[np.random.SeedSequence]:
     n : int
         Number of children.
     """
-    if n < 0:
-        raise ValueError(f"cannot spawn a negative number of seeds ({n})")
+    n = integer_in_range(n, "n", 0, MAX_SEEDS)
+    rng = check_rng(rng)
     if isinstance(rng, np.random.Generator):
         return rng.bit_generator.seed_seq.spawn(n)
     if isinstance(rng, np.random.SeedSequence):
         return rng.spawn(n)
-    if rng is not None and (isinstance(rng, bool) or not isinstance(rng, (int, np.integer))):
-        raise ValueError(f"rng must be None, an int seed, a SeedSequence or a Generator, got {rng!r}")
     return np.random.SeedSequence(rng).spawn(n)
 
 

@@ -44,6 +44,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import math
+import os
 import re
 import tomllib
 from dataclasses import dataclass
@@ -55,6 +56,7 @@ import numpy as np
 import pandas as pd
 
 from ._atomic import atomic_path
+from ._checks import load_json
 
 __all__ = [
     "QUALITIES",
@@ -151,12 +153,20 @@ def start(out_dir, *, seed, quality) -> Path:
     -------
     Path
         The absolute output folder.
+
+    Raises
+    ------
+    ValueError
+        For an empty ``out_dir`` (which would write ``stats.json`` into the current folder),
+        one that names an existing file, a bad ``seed`` or ``quality``.
+    TypeError
+        If ``out_dir`` is not a str or path.
     """
+    out_dir = _output_folder(out_dir)
     if quality not in QUALITIES:
         raise ValueError(f"quality must be one of {QUALITIES}, got {quality!r}")
     if not isinstance(seed, Integral) or isinstance(seed, bool):
         raise ValueError(f"seed must be an int, got {seed!r}")
-    out_dir = Path(out_dir).resolve()
     out_dir.mkdir(parents=True, exist_ok=True)
     global _current_run
     _current_run = _Run(out_dir, out_dir.name)
@@ -165,6 +175,19 @@ def start(out_dir, *, seed, quality) -> Path:
         {"notebook": out_dir.name, "seed": int(seed), "quality": quality, "statistics": {}},
     )
     return out_dir
+
+
+def _output_folder(out_dir) -> Path:
+    """``out_dir`` as an absolute folder path: not empty, not an existing file."""
+    if not isinstance(out_dir, (str, os.PathLike)):
+        raise TypeError(f"out_dir must be a folder path (str or Path), got {type(out_dir).__name__}")
+    text = os.fspath(out_dir)
+    if not isinstance(text, str) or not text.strip() or "\x00" in text:
+        raise ValueError(f"out_dir must name a folder (figures/<notebook-stem>), got {out_dir!r}")
+    path = Path(text).resolve()
+    if path.exists() and not path.is_dir():
+        raise ValueError(f"out_dir {str(path)!r} exists and is not a folder")
+    return path
 
 
 def current_out_dir() -> Path:
@@ -264,13 +287,17 @@ def load_stats(path) -> dict:
     """Read a ``stats.json`` file written by :func:`start` and :func:`record`."""
     path = Path(path)
     try:
-        data = json.loads(path.read_text())
+        text = path.read_text()
     except FileNotFoundError:
         raise ValueError(f"{path}: no stats.json (did the notebook call paperlib.repro.start?)") from None
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{path}: not valid JSON ({exc})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{path}: cannot read stats.json ({exc})") from None
+    data = load_json(text, f"{path}: a stats.json")
     if not isinstance(data, dict) or not isinstance(data.get("statistics"), dict):
         raise ValueError(f"{path}: expected an object with a 'statistics' table")
+    for key, expected in (("notebook", str), ("quality", str), ("seed", int)):
+        if key in data and not isinstance(data[key], expected):
+            raise ValueError(f"{path}: {key!r} must be a {expected.__name__}, got {data[key]!r:.80}")
     return data
 
 

@@ -30,6 +30,7 @@ from pathlib import Path
 import pandas as pd
 
 from . import repro
+from ._atomic import publish_folder, recover_folder
 from .claims import VERDICTS, ledger_table, load_claims, write_ledger
 from .parallel import run_many
 
@@ -150,14 +151,17 @@ def _first_line_of_error(exc: BaseException) -> str:
 
 
 def _publish(staging: Path, target: Path) -> None:
-    """Replace ``target`` by the finished ``staging`` folder in two renames."""
-    target.parent.mkdir(parents=True, exist_ok=True)
-    retired = target.with_name(f".{target.name}.old")
-    shutil.rmtree(retired, ignore_errors=True)
-    if target.exists():
-        os.replace(target, retired)
-    os.replace(staging, target)
-    shutil.rmtree(retired, ignore_errors=True)
+    """Replace ``target`` by the finished ``staging`` folder, crash-safe (:func:`paperlib._atomic.publish_folder`)."""
+    publish_folder(staging, target)
+
+
+def recover_figures(figures: Path) -> list[str]:
+    """Restore every ``figures/<notebook>`` a crash left set aside mid-publish; the names restored."""
+    figures = Path(figures)
+    if not figures.is_dir():
+        return []
+    leftovers = [path for path in figures.glob(".*.old") if path.is_dir()]
+    return [path.name[1:-4] for path in leftovers if recover_folder(figures / path.name[1:-4])]
 
 
 def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None = None, timeout=None) -> NotebookRun:
@@ -244,6 +248,7 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
         that ran successfully.
     """
     layout = Layout.of(root, figures_dir=figures_dir, build_dir=build_dir)
+    recover_figures(layout.figures)  # a run killed mid-publish left a notebook's figures set aside
     notebooks = find_notebooks(layout.notebooks, only)
     # fail before any work when a selected notebook's expected statistics are missing or malformed
     expected = repro.load_expected(layout.expected, notebooks=[path.stem for path in notebooks])

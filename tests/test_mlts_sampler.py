@@ -184,7 +184,16 @@ def test_unreadable_script_and_palette_give_clear_errors(tmp_path):
         Script.load(tmp_path / "bad.json")
     (tmp_path / "palette.png").write_text("not an image")
     with pytest.raises(ValueError, match="cannot read palette image"):
-        load_palette(str(tmp_path / "palette.png"))
+        load_palette(tmp_path / "palette.png")  # a local image is passed explicitly as a Path
+
+
+@pytest.mark.parametrize("source", ["http://127.0.0.1:9/palette.png", "file:///etc/passwd", "/etc/passwd", "nope"])
+def test_palette_strings_name_only_bundled_photographs(source):
+    # issue 21: a string (as a shared JSON script holds) never fetches a URL nor reads a file
+    with pytest.raises(ValueError, match="not a bundled photograph"):
+        load_palette(source)
+    with pytest.raises(ValueError, match="bundled photograph"):
+        RenderSettings(palette=source)
 
 
 def test_sample_script_draws_in_the_documented_ranges():

@@ -61,7 +61,8 @@ def test_bad_workers(bad):
 
 @pytest.mark.parametrize("bad", ["seed", 1.5, True])
 def test_bad_rng(bad):
-    with pytest.raises(ValueError, match="rng"):
+    # a value of the wrong kind is a TypeError from the shared check (paperlib._checks.check_rng)
+    with pytest.raises(TypeError, match="rng"):
         spawn_seeds(bad, 2)
 
 

@@ -211,13 +211,14 @@ def test_add_and_remove_layers(explorer):
     assert all(layer.inclusion for layer in explorer.script.layers[1:])
 
 
-def test_a_loaded_script_that_cannot_render_restores_the_previous_one(explorer, tmp_path):
+def test_a_loaded_script_with_a_file_palette_is_rejected_and_the_previous_one_kept(explorer, tmp_path):
+    # issue 21: a script's palette names a bundled photograph only (no file, no URL), checked on loading
     script = explorer.script
     values = script.to_dict()
     values["render"]["palette"] = str(tmp_path / "no_such_image.png")
     (tmp_path / "palette.json").write_text(json.dumps(values))
     assert explorer.load(tmp_path / "palette.json") is False
-    assert "cannot read palette image" in explorer.message and "previous script is restored" in explorer.message
+    assert "bundled photograph" in explorer.message and "previous script is kept" in explorer.message
     assert explorer.script == script == explorer.controls_script()
 
 

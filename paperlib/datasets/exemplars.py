@@ -86,7 +86,7 @@ from pathlib import Path
 
 import numpy as np
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 from paperlib.geometry import Element
 from paperlib.pointprocess import MultiStraussHard, PointPattern, Window, rmh
 
@@ -587,7 +587,7 @@ def lattice_exemplar(
                          f"or the lattice order is lost; got {jitter!r}")
     angle_jitter = positive_number(angle_jitter, "angle_jitter", allow_zero=True)
     frame = _frame(window)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     glyphs = [_glyph(char, font, size)]
     margin = _margin(glyphs, angle_jitter > 0)
     inner = _shrunk(frame, margin)
@@ -689,7 +689,7 @@ def hatching_exemplar(
     if hc > r:
         raise ValueError(f"hc = {hc} exceeds r = {r}: a hard core must not exceed its radius")
     frame, T = _frame(window), _steps(T)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     glyphs, pattern, truth = _simulate([beta], gamma, r, hc, chars, chars, (length,), frame, T, font, rng,
                                        rotated=True)
     angles = angle + rng.normal(0.0, angle_jitter, size=pattern.n) if angle_jitter > 0 else np.full(pattern.n, angle)
@@ -760,7 +760,7 @@ def drawn_hatching_exemplar(
     length, gap = positive_number(length, "length"), positive_number(gap, "gap")
     angle, angle_spread = _number(angle, "angle"), _number(angle_spread, "angle_spread", 0.0, 90.0)
     max_attempts = int(_number(max_attempts, "max_attempts", 1))
-    frame, rng = _frame(window), np.random.default_rng(rng)
+    frame, rng = _frame(window), as_generator(rng)
     glyph = _glyph(char, font, length)
     inner = _shrunk(frame, _margin([glyph], rotated=True))
     base = _principal_angle(glyph.element)

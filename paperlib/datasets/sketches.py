@@ -113,7 +113,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 from paperlib.geometry import resample_closed_curve, resample_open_curve
 
 __all__ = ["LEAF_KINDS", "MAX_TREMOR", "MAX_WOBBLE", "hand_drawn_curve", "leaf_outline", "leaf_outlines"]
@@ -474,14 +474,14 @@ def leaf_outline(kind: str, *, rng=None, n_points: int = 512) -> np.ndarray:
     """
     kind = _check_kind(kind)
     n_points = _check_n_points(n_points)
-    return _leaf(kind, np.random.default_rng(rng), n_points)
+    return _leaf(kind, as_generator(rng), n_points)
 
 
 def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512) -> list[np.ndarray]:
     """A SYNTHETIC leaf training set: ``n`` outlines cycling over :data:`LEAF_KINDS`.
 
     Outline ``i`` is ``leaf_outline(LEAF_KINDS[i % 5], rng=children[i], n_points=n_points)``, where
-    ``children = np.random.default_rng(rng).spawn(n)``, so every leaf has its own seeded variation
+    ``children = as_generator(rng).spawn(n)``, so every leaf has its own seeded variation
     and leaves of the same kind differ.
 
     Parameters
@@ -510,7 +510,7 @@ def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512) -> list[np.ndar
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
     n_points = _check_n_points(n_points)
-    children = np.random.default_rng(rng).spawn(int(n))
+    children = as_generator(rng).spawn(int(n))
     return [_leaf(LEAF_KINDS[i % len(LEAF_KINDS)], child, n_points) for i, child in enumerate(children)]
 
 
@@ -657,7 +657,7 @@ def hand_drawn_curve(
     wobble = positive_number(wobble, "wobble", allow_zero=True)
     if wobble > MAX_WOBBLE:
         raise ValueError(f"wobble must be at most {MAX_WOBBLE}, got {wobble!r}")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     n_samples = max(4 * n_points, 8192)  # dense enough that resampling loses nothing visible
     if closed:
         curve = resample_closed_curve(_blob(rng, n_samples, wobble, tremor), n_points)

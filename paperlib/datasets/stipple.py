@@ -72,7 +72,7 @@ import math
 import numba
 import numpy as np
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 
 __all__ = ["andrews_like_tones", "stipple_tone_sheet", "stipple_tone_texture"]
 
@@ -347,7 +347,7 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
         raise ValueError(f"dark_min must lie in (light_max = {light_max}, 1), got {dark_min!r}")
     hard_core = _check_hard_core(hard_core)
     regimes = (light_max, dark_min, hard_core)
-    image, truth = _tone_texture(tone, (size, size), np.random.default_rng(rng), mark_radius, *regimes)
+    image, truth = _tone_texture(tone, (size, size), as_generator(rng), mark_radius, *regimes)
     return (image, truth) if return_truth else image
 
 
@@ -408,7 +408,7 @@ def andrews_like_tones(size=256, rng=None, *, return_truth=False):
     list of ndarray of bool, or (list, list of dict)
         Tones 1-8, lightest first, ``True`` = ink.
     """
-    generator = np.random.default_rng(rng)
+    generator = as_generator(rng)
     made = [stipple_tone_texture(ink, size, generator, return_truth=True, **ANDREWS_LIKE_SETTINGS)
             for ink in ANDREWS_LIKE_INK]
     textures, truths = [texture for texture, _ in made], [truth for _, truth in made]
@@ -486,7 +486,7 @@ def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8,
     mark_radius = positive_number(mark_radius, "mark_radius")
     if mark_radius < 1.0:
         raise ValueError(f"mark_radius must be at least 1 pixel, got {mark_radius!r}")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
 
     half = transition // 2
     tones = [(k + 1) / (n_tones + 1) for k in range(n_tones)]

@@ -86,7 +86,7 @@ import numpy as np
 import shapely
 from matplotlib.colors import to_hex
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 from paperlib.geometry import Stroke
 
 __all__ = [
@@ -394,7 +394,7 @@ def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=Non
     """
     n, spacing = _check_1d(n_elements, spacing)
     length = _between(length, "length", 1.5 * spacing, 5.0 * spacing)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     arcs = _path_arcs(n, spacing, _ARC_JITTER, rng)
     angles = np.pi / 2.0 + np.radians(rng.uniform(-2.0, 2.0, n))
     dashed = rng.random(n) < 0.25
@@ -445,7 +445,7 @@ def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertic
     n, spacing = _check_1d(n_elements, spacing)
     length = positive_number(length, "length")
     vertical_jitter = positive_number(vertical_jitter, "vertical_jitter", allow_zero=True)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     arcs = (np.arange(n) + 0.5) * spacing
     centers = np.column_stack([arcs, rng.uniform(-vertical_jitter, vertical_jitter, n)])
     segment = _arc(length)
@@ -511,7 +511,7 @@ def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=
         raise ValueError(f"parameter must be one of {sorted(_GRADIENT_RANGES)}, got {parameter!r}")
     n, spacing = _check_1d(n_elements, spacing)
     jitter = _between(jitter, "jitter", 0.0, 3.0)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     low, high = _GRADIENT_RANGES[parameter]
     step = (high - low) / (n - 1)
     ramp = np.clip(low + step * (np.arange(n) + jitter * rng.standard_normal(n)), low, high)
@@ -579,7 +579,7 @@ def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter
     period = _between(period, "period", 2.0, 1e6)
     amplitude = _between(amplitude, "amplitude", 0.0, 85.0)
     jitter = _between(jitter, "jitter", 0.0, 10.0)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     angles = np.radians(90.0 + amplitude * np.sin(2.0 * np.pi * np.arange(n) / period) + jitter * rng.standard_normal(n))
     lengths, widths = np.full(n, 2.5 * spacing), np.full(n, PEN_WIDTH * spacing)
     return _straight_strokes_1d(angles, lengths, widths, ["#000000"] * n, spacing, rng,
@@ -618,7 +618,7 @@ def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), 
     """
     n, spacing = _check_1d(n_elements, 1.0)
     colors = _colors(colors, "colors", 2)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     arcs = _path_arcs(n, spacing, _ARC_JITTER, rng)
     angles = np.pi / 2.0 + np.radians(rng.uniform(-6.0, 6.0, n))
     lengths = 1.2 * rng.uniform(0.95, 1.05, n)
@@ -771,7 +771,7 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", pat
     structure = _structure(structure, ("patches", "random"))
     patch_size = positive_number(patch_size, "patch_size")
     width, height, region = _region(width, height)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centers, _ = _region_centers(width, height, 1.25, rng)
     n = len(centers)
     if structure == "patches":
@@ -833,7 +833,7 @@ def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> 
     """
     structure = _structure(structure, ("ringed", "random"))
     width, height, region = _region(width, height)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.25, rng)
     n = len(centers)
     if structure == "ringed":
@@ -913,7 +913,7 @@ def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="ban
     structure = _structure(structure, ("bands", "random"))
     band_rows = _count(band_rows, "band_rows", 1)
     width, height, region = _region(width, height)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.3, rng)
     n = len(centers)
     angles = rng.uniform(0.0, 2.0 * np.pi, n)
@@ -964,7 +964,7 @@ def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatter
     Barla et al. 2006, Figure 7 d ("alternating two different kinds of elements") and section 4.
     """
     width, height, region = _region(width, height)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.2, rng, hexagonal=False)
     n = len(centers)
     is_a = (cells[:, 0] + cells[:, 1]) % 2 == 0
@@ -1050,7 +1050,7 @@ def irregular_exemplar(n_elements=100, *, width=12.0, height=12.0, rng=None) -> 
     """
     n = _count(n_elements, "n_elements", 3)
     width, height, region = _region(width, height)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centers = _clustered_centers(n, width, height, 0.5, rng)
     centers = centers[_drawing_order(centers, 1.0)]
     angles = rng.uniform(0.0, np.pi, n)

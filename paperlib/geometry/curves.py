@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._checks import integer_at_least
+from .._checks import integer_at_least, point_array
 from .strokes import as_points
 
 __all__ = [
@@ -29,8 +29,14 @@ def _shoelace_terms(ring: np.ndarray) -> np.ndarray:
 
 
 def signed_area(ring) -> float:
-    """Shoelace area of a ring: positive when counter-clockwise (y up)."""
-    return 0.5 * float(_shoelace_terms(np.asarray(ring, dtype=np.float64)).sum())
+    """Shoelace area of a ring: positive when counter-clockwise (y up).
+
+    Raises
+    ------
+    ValueError
+        If ``ring`` is not a finite ``(n, 2)`` array.
+    """
+    return 0.5 * float(_shoelace_terms(point_array(ring, "ring")).sum())
 
 
 def ring_centroid(ring) -> np.ndarray:
@@ -39,9 +45,9 @@ def ring_centroid(ring) -> np.ndarray:
     Raises
     ------
     ValueError
-        If the ring encloses no area.
+        If the ring is not a finite ``(n, 2)`` array or encloses no area.
     """
-    ring = np.asarray(ring, dtype=np.float64)
+    ring = point_array(ring, "ring")
     cross = _shoelace_terms(ring)
     area = 0.5 * cross.sum()
     if area == 0:
@@ -54,8 +60,13 @@ def drop_repeated_vertices(ring) -> np.ndarray:
 
     Of a run of equal vertices the last copy stays, so a closed polyline given with its
     first vertex repeated at the end loses the end copy and keeps its start vertex.
+
+    Raises
+    ------
+    ValueError
+        If ``ring`` is not a finite ``(n, 2)`` array.
     """
-    ring = np.asarray(ring, dtype=np.float64)
+    ring = point_array(ring, "ring")
     return ring[np.any(ring != np.roll(ring, -1, axis=0), axis=1)]
 
 
@@ -64,8 +75,13 @@ def oriented_ccw(ring) -> np.ndarray:
 
     The start vertex stays first (only the order of the others is reversed), so where a
     curve starts does not depend on how its source happened to orient it.
+
+    Raises
+    ------
+    ValueError
+        If ``ring`` is not a finite ``(n, 2)`` array.
     """
-    ring = np.asarray(ring, dtype=np.float64)
+    ring = point_array(ring, "ring")
     return ring if signed_area(ring) >= 0 else np.concatenate([ring[:1], ring[:0:-1]])
 
 

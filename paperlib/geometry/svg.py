@@ -79,13 +79,14 @@ References
 
 from __future__ import annotations
 
-import gzip
 import io
 import math
 import os
 import re
 import warnings
 import xml.etree.ElementTree as ET
+import zlib
+from xml.parsers import expat
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -93,12 +94,19 @@ import numpy as np
 import svgelements
 
 from .._atomic import atomic_path
+from .._checks import budget, check_budget
 from .strokes import Element, Stroke, as_elements
 
-__all__ = ["DEFAULT_TOLERANCE", "read_svg", "svg_string", "write_svg"]
+__all__ = ["DEFAULT_TOLERANCE", "MAX_DOCUMENT_BYTES", "MAX_FLATTENED_POINTS", "read_svg", "svg_string", "write_svg"]
 
 #: Default flattening tolerance, in user units: a tenth of a CSS pixel in px drawings.
 DEFAULT_TOLERANCE = 0.1
+#: Default budget of :func:`read_svg`: the most points all flattened strokes of one document may hold
+#: (5 million points, 80 MB of coordinates). Raise it with the ``max_points`` keyword.
+MAX_FLATTENED_POINTS = 5_000_000
+#: Default budget of :func:`read_svg`: the largest document, in bytes, after ``.svgz`` decompression
+#: (64 MiB). Raise it with the ``max_bytes`` keyword.
+MAX_DOCUMENT_BYTES = 64 * 2**20
 
 _SVG_NAMESPACE = "http://www.w3.org/2000/svg"
 _INKSCAPE_NAMESPACE = "http://www.inkscape.org/namespaces/inkscape"
@@ -119,7 +127,8 @@ _CSS_LENGTH = re.compile(r"^\s*(\d*\.?\d+(?:[eE][-+]?\d+)?)\s*(?:px|mm|cm|in|pt|
 # --------------------------------------------------------------------------- reading
 
 
-def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool = True) -> list[Element]:
+def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool = True,
+             max_points: int = MAX_FLATTENED_POINTS, max_bytes: int = MAX_DOCUMENT_BYTES) -> list[Element]:
     """Read the drawable shapes of an SVG document as elements of polyline strokes.
 
     Parameters
@@ -133,6 +142,13 @@ def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool =
     y_up : bool
         Return y-up coordinates, ``(x, -y_svg)`` (the frame of paperlib's elements);
         ``False`` keeps SVG's y-down ``(x, y_svg)``.
+    max_points : int
+        Budget: the most points the flattened strokes of the whole document may hold
+        (default :data:`MAX_FLATTENED_POINTS`); a larger document raises ValueError before
+        flattening further.
+    max_bytes : int
+        Budget: the largest document, in bytes, read from a file or decompressed from
+        ``.svgz`` (default :data:`MAX_DOCUMENT_BYTES`); decompression stops at the limit.
 
     Returns
     -------
@@ -145,9 +161,11 @@ def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool =
     FileNotFoundError
         If ``path_or_text`` names no file.
     ValueError
-        If the document is not well-formed XML, is not SVG, has path data or attributes
-        svgelements cannot read, or has no drawable element; if ``tolerance`` is not a
-        positive number.
+        If the document is not well-formed XML, is not SVG, declares entities, an internal DTD subset or a non-SVG DOCTYPE
+        (rejected: entity expansion is a denial-of-service vector and SVG needs neither),
+        has path data, attributes or arithmetic svgelements cannot read, exceeds
+        ``max_points`` or ``max_bytes``, or has no drawable element; if ``tolerance`` is not
+        a positive number.
 
     Warns
     -----
@@ -162,14 +180,13 @@ def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool =
        Example", NPAR 2009, section 2.
     """
     tolerance = _check_tolerance(tolerance)
-    document = _parse_svg(_read_source(path_or_text))
-    elements, degenerate = [], []
-    for node in _element_nodes(document):
-        name = _own_attribute(node, _INKSCAPE_LABEL) or _own_attribute(node, "id") or ""
-        strokes, skipped = _node_strokes(node, tolerance, y_up)
-        degenerate += [name] * skipped
-        if strokes:
-            elements.append(Element(tuple(strokes), name))
+    points = _PointBudget(budget(max_points, "max_points"))
+    document = _parse_svg(_read_source(path_or_text, budget(max_bytes, "max_bytes")))
+    try:
+        elements, degenerate = _document_elements(document, tolerance, y_up, points)
+    except (ArithmeticError, AttributeError, IndexError, TypeError, KeyError, RecursionError) as exc:
+        # svgelements and float arithmetic fail on hostile data with assorted types: report it as bad SVG
+        raise ValueError(f"malformed SVG: cannot flatten its shapes ({type(exc).__name__}: {exc})") from None
     if degenerate:
         _warn_skipped(degenerate, stacklevel=3)
     if not elements:
@@ -179,6 +196,29 @@ def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool =
             + (f" ({len(degenerate)} degenerate subpath(s) skipped)" if degenerate else "")
         )
     return elements
+
+
+class _PointBudget:
+    """The flattened points left to a document (``max_points`` of :func:`read_svg`)."""
+
+    def __init__(self, limit: int):
+        self.limit, self.used = limit, 0
+
+    def take(self, count: int) -> None:
+        self.used += count
+        check_budget(self.used, self.limit, "max_points", "flattened points (so far)")
+
+
+def _document_elements(document, tolerance: float, y_up: bool, points: _PointBudget):
+    """The elements of a parsed document and the names of those with degenerate subpaths skipped."""
+    elements, degenerate = [], []
+    for node in _element_nodes(document):
+        name = _own_attribute(node, _INKSCAPE_LABEL) or _own_attribute(node, "id") or ""
+        strokes, skipped = _node_strokes(node, tolerance, y_up, points)
+        degenerate += [name] * skipped
+        if strokes:
+            elements.append(Element(tuple(strokes), name))
+    return elements, degenerate
 
 
 def _warn_skipped(element_names: list[str], stacklevel: int) -> None:
@@ -208,9 +248,10 @@ def _check_tolerance(tolerance) -> float:
     return value
 
 
-def _read_source(path_or_text) -> str | bytes:
+def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES) -> str | bytes:
     """The document's text: ``str`` text as given, file contents as bytes (so that the
-    XML parser honours their encoding declaration), gzip (.svgz) decompressed."""
+    XML parser honours their encoding declaration), gzip (.svgz) decompressed; at most
+    ``max_bytes`` either way."""
     if isinstance(path_or_text, str) and not path_or_text.strip():
         raise ValueError("read_svg got an empty string: expected SVG text or a file name")
     if isinstance(path_or_text, str) and path_or_text.lstrip("\ufeff \t\r\n").startswith("<"):
@@ -219,26 +260,80 @@ def _read_source(path_or_text) -> str | bytes:
         data = bytes(path_or_text)
     elif isinstance(path_or_text, (str, os.PathLike)):
         path = Path(path_or_text)
-        if not path.is_file():
-            raise FileNotFoundError(f"no SVG file at {str(path)!r}")
+        try:
+            is_file = path.is_file()
+        except (OSError, ValueError):  # a name too long or holding a NUL byte names no file
+            is_file = False
+        if not is_file:
+            raise FileNotFoundError(f"no SVG file at {str(path)[:200]!r}")
+        check_budget(path.stat().st_size, max_bytes, "max_bytes", "bytes of SVG file")
         data = path.read_bytes()
     else:
         raise TypeError(f"expected an SVG file name or SVG text, got {type(path_or_text).__name__}")
+    check_budget(len(data), max_bytes, "max_bytes", "bytes of SVG")
     if data[:2] == b"\x1f\x8b":
-        try:
-            data = gzip.decompress(data)
-        except (OSError, EOFError) as exc:
-            raise ValueError(f"malformed SVGZ: the gzip stream is corrupt ({exc})") from None
+        data = _gunzip(data, max_bytes)
     return data
+
+
+def _gunzip(data: bytes, max_bytes: int) -> bytes:
+    """Decompress a gzip stream (members concatenated), stopping with a ValueError past ``max_bytes``."""
+    out, rest = [], data
+    size = 0
+    try:
+        while rest:
+            stream = zlib.decompressobj(wbits=16 + zlib.MAX_WBITS)
+            while rest:
+                chunk = stream.decompress(rest, max_bytes + 1 - size)
+                size += len(chunk)
+                out.append(chunk)
+                check_budget(size, max_bytes, "max_bytes", "bytes of decompressed SVGZ (at least)")
+                rest = stream.unconsumed_tail
+                if stream.eof:
+                    break
+            if not stream.eof:
+                raise ValueError("malformed SVGZ: the gzip stream is truncated")
+            rest = stream.unused_data.lstrip(b"\x00")
+    except zlib.error as exc:
+        raise ValueError(f"malformed SVGZ: the gzip stream is corrupt ({exc})") from None
+    return b"".join(out)
+
+
+def _reject_declarations(text: str | bytes) -> None:
+    """ValueError for a document that declares entities or an internal DTD subset, before the tree
+    parser sees it.
+
+    SVG needs neither, and entity expansion ("billion laughs", external entities) is a classic
+    denial of service; expat's own amplification limits are not relied on. A plain DOCTYPE that
+    only names a W3C SVG DTD (``<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "...">``, written
+    by Inkscape, Illustrator and matplotlib) declares nothing and is accepted (no parser here
+    fetches the DTD); a DOCTYPE pointing anywhere else is refused.
+    """
+    def refuse(*_args):
+        raise ValueError("malformed SVG: ENTITY declarations, internal DTD subsets and non-SVG DOCTYPEs are not accepted")
+
+    def doctype(_name, system_id, public_id, has_internal_subset):
+        if has_internal_subset or (system_id is not None and not str(public_id).startswith("-//W3C//DTD SVG")):
+            refuse()
+
+    scanner = expat.ParserCreate()
+    scanner.StartDoctypeDeclHandler = doctype
+    scanner.EntityDeclHandler = refuse
+    scanner.ExternalEntityRefHandler = refuse
+    try:
+        scanner.Parse(text, True)
+    except expat.ExpatError as exc:
+        raise ValueError(f"malformed SVG: not well-formed XML ({exc})") from None
 
 
 def _parse_svg(text: str | bytes) -> svgelements.SVG:
     """Parse with svgelements, lazily (``reify=False``: shapes keep their own coordinates
     and a transform matrix, which :func:`_shape_polylines` applies) and in the root's user
     space (see :func:`_without_root_viewport`)."""
+    _reject_declarations(text)
     try:
         root = ET.fromstring(text)
-    except ET.ParseError as exc:
+    except (ET.ParseError, RecursionError) as exc:
         raise ValueError(f"malformed SVG: not well-formed XML ({exc})") from None
     if _local_name(root.tag) != "svg":
         raise ValueError(f"not an SVG document: the root element is <{_local_name(root.tag)}>, expected <svg>")
@@ -331,14 +426,16 @@ def _shapes(node):
             yield from _shapes(child)
 
 
-def _node_strokes(node, tolerance: float, y_up: bool) -> tuple[list[Stroke], int]:
+def _node_strokes(node, tolerance: float, y_up: bool, points_left: _PointBudget) -> tuple[list[Stroke], int]:
     """Strokes of all shapes in ``node`` and how many degenerate subpaths were skipped."""
     strokes, skipped = [], 0
     for shape in _shapes(node):
         style = _stroke_style(shape)
         if style is None:
             continue
-        for points in _shape_polylines(shape, tolerance, y_up):
+        for points in _shape_polylines(shape, tolerance, y_up, points_left):
+            if not np.isfinite(points).all():
+                raise ValueError("malformed SVG: a shape's coordinates overflow to infinity or NaN once transformed")
             if np.any(points != points[0]):
                 strokes.append(Stroke(points, *style))
             else:
@@ -362,21 +459,23 @@ def _is_painted(paint) -> bool:
     return paint is not None and paint.value is not None
 
 
-def _shape_polylines(shape, tolerance: float, y_up: bool):
+def _shape_polylines(shape, tolerance: float, y_up: bool, points_left: _PointBudget):
     """Yield one ``(n, 2)`` polyline per subpath of the shape, transformed to user space."""
     matrix = shape.transform
     linear = np.array([[matrix.a, matrix.c], [matrix.b, matrix.d]])
     offset = np.array([matrix.e, matrix.f])
     stretch = np.linalg.norm(linear, 2)  # the most the transform lengthens a distance
     local_tolerance = tolerance / stretch if stretch > 0 else math.inf
-    for local in _subpath_polylines(shape.segments(transformed=False), local_tolerance):
+    if not (np.isfinite(linear).all() and np.isfinite(offset).all()):
+        raise ValueError("malformed SVG: a transform is not finite")
+    for local in _subpath_polylines(shape.segments(transformed=False), local_tolerance, points_left):
         points = local @ linear.T + offset
         if y_up:
             points[:, 1] = 0.0 - points[:, 1]  # 0.0 - y, not -y: no -0.0 in the output
         yield points
 
 
-def _subpath_polylines(segments, tolerance: float):
+def _subpath_polylines(segments, tolerance: float, points_left: _PointBudget):
     """Yield the flattened polyline of each subpath of svgelements path segments. A bare
     moveto draws nothing in SVG and yields nothing; ``M x y Z`` yields its one point."""
     current = None
@@ -392,7 +491,7 @@ def _subpath_polylines(segments, tolerance: float):
             yield np.vstack(_closed(current))
             current = None
         else:
-            current.append(_flatten_segment(segment, tolerance))
+            current.append(_flatten_segment(segment, tolerance, points_left))
     if current and len(current) > 1:
         yield np.vstack(current)
 
@@ -410,13 +509,15 @@ def _xy(point) -> np.ndarray:
     return np.array([point.x, point.y], dtype=np.float64)
 
 
-def _flatten_segment(segment, tolerance: float) -> np.ndarray:
+def _flatten_segment(segment, tolerance: float, points_left: _PointBudget) -> np.ndarray:
     """The polyline of one segment, without its start point and ending exactly at its end."""
     bound = _second_derivative_bound(segment)
     if bound is None:  # a straight segment
+        points_left.take(1)
         return _xy(segment.end)[None]
     span, curvature = bound
     count = _segment_count(span, curvature, tolerance)
+    points_left.take(count)
     points = np.array(segment.npoint(np.arange(1, count + 1) / count), dtype=np.float64).reshape(-1, 2)
     points[-1] = _xy(segment.end)
     return points
@@ -441,7 +542,12 @@ def _second_derivative_bound(segment) -> tuple[float, float] | None:
 def _segment_count(span: float, curvature: float, tolerance: float) -> int:
     """Fewest equal parameter steps over ``span`` for which the chord error bound
     ``step**2 curvature / 8`` is at most ``tolerance``."""
-    count = max(1, math.ceil(span * math.sqrt(curvature / (8.0 * tolerance))))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # overflow is reported just below
+        steps = float(span * np.sqrt(np.float64(curvature) / (8.0 * np.float64(tolerance))))
+    if not math.isfinite(steps):
+        raise ValueError(f"cannot flatten a curve (parameter span {span!r}, curvature bound {curvature!r}) within "
+                         f"tolerance={tolerance:g}: the curve is not finite or the tolerance is far too small")
+    count = max(1, math.ceil(steps))
     if count > _MAX_POINTS_PER_SEGMENT:
         raise ValueError(
             f"flattening a curve within tolerance={tolerance:g} needs {count} points; "

@@ -48,7 +48,7 @@ import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 
 __all__ = [
     "DEFAULT_PALETTE",
@@ -434,7 +434,7 @@ def dead_leaves(shape, *, n_leaves=None, coverage_target=None, r_min, r_max, alp
     target = None if coverage_target is None else positive_number(coverage_target, "coverage_target")
     if target is not None and target > 1.0:
         raise ValueError(f"coverage_target must lie in (0, 1], got {coverage_target!r}")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
 
     n_pixels = height * width
     stop_uncovered = -1 if target is None else n_pixels - math.ceil(target * n_pixels - 1e-9)
@@ -506,7 +506,7 @@ def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_label
     height, width = _check_shape(shape)
     n_cells = _count(n_cells, "n_cells", 1)
     colours = _check_palette(palette)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     centres = np.column_stack([rng.uniform(0.0, width, n_cells), rng.uniform(0.0, height, n_cells)])
     colour_index = rng.integers(len(colours), size=n_cells)
     _, nearest = cKDTree(centres).query(_pixel_centres(height, width))
@@ -608,7 +608,7 @@ def poisson_line_tessellation(shape, intensity, *, palette=None, rng=None, retur
         raise ValueError(f"intensity {intensity} gives about {expected_lines:.3g} lines in the image; at most "
                          f"{_MAX_LINES} are supported")
     colours = _check_palette(palette)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     lines = _lines_hitting_window(height, width, intensity, rng)
     labels = _line_cell_labels(height, width, lines)
     colour_index = rng.integers(len(colours), size=int(labels.max()) + 1)
@@ -726,7 +726,7 @@ def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None) -> tuple[np.ndarray
     """
     linear, offsets, probabilities = _check_ifs(barnsley_fern() if maps is None else maps)
     n_points = _count(n_points, "n_points", 1)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     choices = rng.choice(len(probabilities), size=n_points, p=probabilities / probabilities.sum())
     start = np.linalg.solve(np.eye(2) - linear[0], offsets[0])
     points = _chaos_game(linear, offsets, choices.astype(np.int64), start)

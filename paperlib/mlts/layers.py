@@ -57,10 +57,13 @@ def check_projective_point(point, name: str) -> tuple[float, float, float]:
 
 def check_texels(texels) -> tuple[str, ...]:
     """A non-empty tuple of known texel kinds."""
-    kinds = (texels,) if isinstance(texels, str) else tuple(texels)
+    try:
+        kinds = (texels,) if isinstance(texels, str) else tuple(texels)
+    except TypeError:
+        raise ValueError(f"texels must be a texel kind or a list of them, got {texels!r:.100}") from None
     if not kinds:
         raise ValueError("a layer needs at least one texel kind")
-    unknown = [kind for kind in kinds if kind not in TEXELS]
+    unknown = [kind for kind in kinds if not isinstance(kind, str) or kind not in TEXELS]
     if unknown:
         raise ValueError(f"unknown texel kind(s) {unknown}; choose among {TEXELS}")
     return kinds

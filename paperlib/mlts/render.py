@@ -4,7 +4,8 @@ The function ``F`` of Definition 1 gives every object a colour; :func:`render_st
 the objects layer by layer, the later in front (occlusion), with the rules of section 5:
 
 - 5.1 colour palette: each object's colour is a pixel drawn uniformly from the palette image
-  (:func:`load_palette`: a scikit-image photograph or an image file);
+  (:func:`load_palette`: a bundled scikit-image photograph, named in the script, or a local image
+  file the caller loads and passes explicitly; never a URL);
 - 5.2 transparency: each object draws a transparency uniformly in ``[0, transparency]``
   (0 opaque; the paper draws it "between 0 and 1", our bound is a parameter);
 - 5.3 light spot: a point drawn uniformly inside the object carries a light at height
@@ -23,12 +24,14 @@ structure can be recoloured (Fig. 18) and one colouring rule re-applied to a new
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
 import shapely
 from skimage.measure import label
 
+from .._checks import budget, check_budget
 from ..datasets import photograph, photograph_names
 from .raster import coverage, paint
 from .sampler import Structure, sample_structure
@@ -40,28 +43,66 @@ __all__ = ["load_palette", "render", "render_structure", "tessellation_cells"]
 PALETTE_PIXELS = 65536
 
 
+#: Default budget of :func:`render` and :func:`render_structure`: the most anti-aliasing samples
+#: ``width * height * samples**2`` of one image, 2**27 (the tessellation keys alone take 8 bytes each:
+#: 1 GiB). Raise it with the ``max_samples`` keyword.
+MAX_RENDER_SAMPLES = 2**27
+
+#: Largest palette image read from a local file, in pixels (a decompression-bomb guard).
+MAX_PALETTE_IMAGE_PIXELS = 50_000_000
+
+
 def load_palette(source) -> np.ndarray:
     """The palette of section 5.1: the RGB colours (n, 3) in [0, 1] of an image's pixels.
 
-    ``source`` is a scikit-image photograph name (:func:`paperlib.datasets.photograph_names`),
-    a path to an image file, or an (h, w, 3) / (n, 3) array. Raises ValueError for an unreadable
-    or non-colour image.
-    """
-    if isinstance(source, str) and source in photograph_names():
-        pixels = photograph(source)
-    elif isinstance(source, (str, Path)):
-        from skimage.io import imread
+    Parameters
+    ----------
+    source : str, os.PathLike or array_like
+        A ``str`` names a bundled photograph (:func:`paperlib.datasets.photograph_names`) and
+        nothing else: a string from a shared script can neither fetch a URL nor read a file.
+        A local image file is passed explicitly as a :class:`pathlib.Path` (any ``os.PathLike``);
+        an (h, w, 3) / (n, 3) array is used as it is.
 
-        try:
-            pixels = imread(source)
-        except (OSError, ValueError) as exc:
-            raise ValueError(f"cannot read palette image {source!r}: {exc}") from None
+    Raises
+    ------
+    ValueError
+        For an unknown photograph name, a path that is not a local file, an unreadable or
+        non-colour image, or an image above :data:`MAX_PALETTE_IMAGE_PIXELS` pixels.
+    """
+    if isinstance(source, str):
+        if source not in photograph_names():
+            raise ValueError(f"palette {source[:100]!r} is not a bundled photograph; choose among "
+                             f"{', '.join(photograph_names())}, or pass a local image as a pathlib.Path")
+        pixels = photograph(source)
+    elif isinstance(source, os.PathLike):
+        pixels = _read_local_image(Path(source))
     else:
-        pixels = np.asarray(source)
+        try:
+            pixels = np.asarray(source)
+        except (TypeError, ValueError):
+            raise ValueError("palette must be a photograph name, a local image path or an array of colours") from None
     return _palette_colours(pixels, source)
 
 
+def _read_local_image(path: Path) -> np.ndarray:
+    """A local image file's pixels (the path must name an existing file: no URL, no other scheme)."""
+    from PIL import Image
+
+    if not path.is_file():
+        raise ValueError(f"cannot read palette image {str(path)!r}: no such local file")
+    try:
+        with Image.open(path) as image:
+            if image.width * image.height > MAX_PALETTE_IMAGE_PIXELS:
+                raise ValueError(f"palette image {str(path)!r} has {image.width * image.height:,} pixels, above "
+                                 f"MAX_PALETTE_IMAGE_PIXELS={MAX_PALETTE_IMAGE_PIXELS:,}")
+            return np.asarray(image.convert("RGBA") if image.mode in ("LA", "PA", "RGBA") else image.convert("RGB"))
+    except (OSError, Image.DecompressionBombError) as exc:
+        raise ValueError(f"cannot read palette image {str(path)!r}: {exc}") from None
+
+
 def _palette_colours(pixels: np.ndarray, source) -> np.ndarray:
+    if pixels.dtype.kind not in "biuf":
+        raise ValueError(f"palette colours must be numbers, got dtype {pixels.dtype}")
     if pixels.ndim not in (2, 3) or pixels.shape[-1] not in (3, 4) or pixels.size == 0:
         raise ValueError(f"palette {source!r} must be an RGB(A) image or an (n, 3) colour list, got {pixels.shape}")
     colours = pixels.reshape(-1, pixels.shape[-1])[:, :3]
@@ -116,7 +157,8 @@ def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) 
     return fine.reshape(structure.height, samples, structure.width, samples, 3).mean(axis=(1, 3))
 
 
-def render_structure(structure: Structure, settings: RenderSettings, palette=None) -> np.ndarray:
+def render_structure(structure: Structure, settings: RenderSettings, palette=None, *,
+                     max_samples: int = MAX_RENDER_SAMPLES) -> np.ndarray:
     """Render an object structure with the rules of section 5 (module docstring).
 
     Parameters
@@ -127,7 +169,11 @@ def render_structure(structure: Structure, settings: RenderSettings, palette=Non
         Palette, render seed, transparency bound, light distance, tessellation, keep father
         inclusion, anti-aliasing samples.
     palette : array_like, optional
-        Colours (n, 3) to use instead of loading ``settings.palette`` (already loaded palettes).
+        Colours (n, 3) to use instead of loading ``settings.palette`` (already loaded palettes,
+        or a local image: ``load_palette(pathlib.Path(...))``).
+    max_samples : int
+        Budget: the most anti-aliasing samples ``width * height * samples**2`` (default
+        :data:`MAX_RENDER_SAMPLES`), checked before anything is allocated.
 
     Returns
     -------
@@ -142,6 +188,7 @@ def render_structure(structure: Structure, settings: RenderSettings, palette=Non
         raise ValueError(f"structure must be a paperlib.mlts.Structure, got {type(structure).__name__}")
     if not isinstance(settings, RenderSettings):
         raise ValueError(f"settings must be RenderSettings, got {type(settings).__name__}")
+    _check_render_budget(structure.width, structure.height, settings.samples, max_samples)
     colours = load_palette(settings.palette) if palette is None else _palette_colours(np.asarray(palette), "palette")
     rng = np.random.default_rng(settings.seed)
     if settings.tessellation:
@@ -162,12 +209,19 @@ def render_structure(structure: Structure, settings: RenderSettings, palette=Non
     return canvas
 
 
-def render(script: Script, palette=None) -> np.ndarray:
+def render(script: Script, palette=None, *, max_samples: int = MAX_RENDER_SAMPLES) -> np.ndarray:
     """The image of a script: its structure (:func:`sample_structure`) rendered (:func:`render_structure`).
 
-    The same script gives the same image bit for bit.
+    The same script gives the same image bit for bit. ``palette`` and ``max_samples`` are those of
+    :func:`render_structure`; the budget is checked before the structure is sampled.
     """
     if not isinstance(script, Script):
         raise ValueError(f"script must be a paperlib.mlts.Script, got {type(script).__name__}")
+    _check_render_budget(script.width, script.height, script.render.samples, max_samples)
     structure = sample_structure(script.layers, script.width, script.height, seed=script.seed)
-    return render_structure(structure, script.render, palette)
+    return render_structure(structure, script.render, palette, max_samples=max_samples)
+
+
+def _check_render_budget(width: int, height: int, samples: int, max_samples) -> None:
+    check_budget(width * height * samples**2, budget(max_samples, "max_samples"), "max_samples",
+                 "anti-aliasing samples (width x height x samples^2)")

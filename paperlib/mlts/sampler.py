@@ -59,6 +59,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
+from .._checks import as_generator, budget, check_budget
 from .layers import Layer
 from .raster import coverage
 from .texels import affine_map, distances_to, orientation_angles, texel_batch
@@ -499,7 +500,12 @@ def _place_layer(layer: Layer, slots: _Slots, width: int, height: int, points, f
     return sorted(placed, key=lambda item: item[0])
 
 
-def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
+#: Default budget of :func:`sample_structure`: the most placement trials of one layer
+#: (fathers x Max_O x Max_T x (Max_DR + 1)), 2e7. Raise it with the ``max_trials`` keyword.
+MAX_LAYER_TRIALS = 20_000_000
+
+
+def sample_structure(layers, width: int, height: int, seed=None, *, max_trials: int = MAX_LAYER_TRIALS) -> Structure:
     """Sample the object structure of an ML-texture (section 4, "Implementation").
 
     Parameters
@@ -511,6 +517,11 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
         Image size in pixels.
     seed : None, int or numpy.random.Generator, optional
         The paper's ``Seed(L)``: a seed fixes the structure bit for bit.
+    max_trials : int
+        Budget: the most placement trials one layer may make, ``fathers x Max_O x Max_T x
+        (Max_DR + 1)`` with the fathers actually placed (default :data:`MAX_LAYER_TRIALS`); nested
+        layers multiply, so a deep script is stopped with a ValueError before the layer that
+        would exceed it.
 
     Returns
     -------
@@ -519,7 +530,8 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
     Raises
     ------
     ValueError
-        Non-integer or non-positive image size, an item that is not a Layer.
+        Non-integer or non-positive image size, an item that is not a Layer, a layer above
+        ``max_trials``.
 
     References
     ----------
@@ -528,7 +540,8 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
     """
     width, height = _image_size(width, "width"), _image_size(height, "height")
     layers = _checked_layers(layers)
-    rng = np.random.default_rng(seed)
+    rng = as_generator(seed, "seed")
+    max_trials = budget(max_trials, "max_trials")
     rectangle = np.array([[0.0, 0.0], [width, 0.0], [width, height], [0.0, height]])
     objects = [MLObject(0, -1, "image", (width / 2, height / 2), math.hypot(width, height), 0.0, 0, rectangle)]
     geometries = [Polygon(rectangle)]
@@ -540,6 +553,8 @@ def sample_structure(layers, width: int, height: int, seed=None) -> Structure:
         fars = [_far_distance(point, width, height) for point in points]
         # texels and placements from separate streams: changing T(L_m) leaves the trials' centres and
         # orientations as they were (Figs. 12 and 18 compare textures that differ only by shape)
+        trials = len(fathers) * layer.max_objects * layer.max_trials * (layer.max_reductions + 1)
+        check_budget(trials, max_trials, "max_trials", f"placement trials in layer {number + 1}")
         texel_rng, placement_rng = rng.spawn(2)
         slots = _layer_slots(layer, fathers, geometries, frames, texel_rng)
         children = []

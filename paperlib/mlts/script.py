@@ -20,11 +20,11 @@ import math
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-import numpy as np
 
 from .._atomic import atomic_path
-from .._checks import positive_number
+from .._checks import as_generator, load_json, positive_number
 from .layers import Layer, check_exact_keys
+from ..datasets import photograph_names
 from .texels import TEXELS
 
 __all__ = ["RenderSettings", "Script", "sample_script", "SCRIPT_VERSION"]
@@ -70,8 +70,10 @@ class RenderSettings:
     Attributes
     ----------
     palette : str
-        The palette image (5.1): a scikit-image photograph name
-        (:func:`paperlib.datasets.photograph_names`) or a path to an image file.
+        The palette image (5.1): a bundled scikit-image photograph name
+        (:func:`paperlib.datasets.photograph_names`), checked on creation. A script shared as JSON
+        cannot make its reader fetch a URL or read a file; to colour with a local image, pass
+        ``palette=load_palette(pathlib.Path(...))`` to :func:`paperlib.mlts.render`.
     seed : int
         "Seed to initiate random assignment of palette colors to objects" (and transparencies,
         light points): colours change, geometry stays (Fig. 18).
@@ -99,8 +101,9 @@ class RenderSettings:
     samples: int = 4
 
     def __post_init__(self):
-        if not isinstance(self.palette, str) or not self.palette:
-            raise ValueError(f"palette must name a photograph or an image file, got {self.palette!r}")
+        if not isinstance(self.palette, str) or self.palette not in photograph_names():
+            raise ValueError(f"palette must name a bundled photograph ({', '.join(photograph_names())}), got "
+                             f"{self.palette!r:.100}; pass a local image to render(..., palette=) instead")
         _seed(self.seed, "render seed")
         transparency = positive_number(self.transparency, "transparency", allow_zero=True)
         if transparency > 1:
@@ -178,16 +181,13 @@ class Script:
         check_exact_keys(values["render"], RenderSettings, "render")
         if not isinstance(values["layers"], list):
             raise ValueError("script 'layers' must be a list of layer objects")
-        layers = tuple(Layer.from_dict(layer) for layer in values["layers"])
+        layers = tuple(_layer_from_dict(index, layer) for index, layer in enumerate(values["layers"]))
         return cls(values["width"], values["height"], values["seed"], layers, RenderSettings(**values["render"]))
 
     @classmethod
     def from_json(cls, text: str) -> "Script":
-        try:
-            values = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"not a JSON script: {exc}") from None
-        return cls.from_dict(values)
+        """A script from JSON text; bad syntax, nesting too deep and bad keys raise ValueError."""
+        return cls.from_dict(load_json(text, "a JSON script"))
 
     def save(self, path) -> Path:
         """Write the script as JSON (atomically: no half-written file)."""
@@ -203,6 +203,14 @@ class Script:
         except OSError as exc:
             raise ValueError(f"cannot read script {path}: {exc.strerror or exc}") from None
         return cls.from_json(text)
+
+
+def _layer_from_dict(index: int, values) -> Layer:
+    """Layer ``index`` of a script's JSON, its errors prefixed with where they are."""
+    try:
+        return Layer.from_dict(values)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"script layer {index}: {exc}") from None
 
 
 # ---------------------------------------------------------------------------- automatic mode
@@ -279,7 +287,7 @@ def sample_script(rng=None, *, width: int = 512, height: int = 512, palette: str
     Alvarez et al. 2015, section 4 (automatic mode, ranges "compatible with image size, the
     sampling rate, and our perception accuracy") and 5.4 (rendering parameters).
     """
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     short = min(width, height)
     n_layers = _integer(rng, LAYER_COUNT_RANGE) - 1
     layers, diameter = [], _uniform(rng, DIAMETER_RANGE) * short

@@ -42,7 +42,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 from scipy.spatial.distance import pdist
 
-from .._checks import positive_number
+from .._checks import as_generator, positive_number
 
 __all__ = [
     "TEXELS",
@@ -176,7 +176,7 @@ def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = Non
     if kind in ("rectangle", "ellipse"):
         fixed = _fixed_texel(kind, n_vertices)
         return [fixed.copy() for _ in range(count)]
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     raw = _RANDOM_GENERATORS[kind](rng, int(count), n_vertices)
     return _normalised_all(raw, rng.uniform(0.0, 2.0 * math.pi, size=count))
 

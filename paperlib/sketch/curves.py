@@ -25,6 +25,7 @@ import numpy as np
 import shapely
 from scipy.ndimage import convolve1d
 
+from .._checks import check_budget, check_flag, finite_array, integer_at_least, point_array, positive_number
 from ..geometry import as_points, resample_closed_curve, resample_open_curve
 
 __all__ = [
@@ -43,9 +44,24 @@ __all__ = [
     "wrap_angle",
 ]
 
+#: Default budget of :func:`multiscale_angles`: the most values (scales x samples) it may hold, 2**26 doubles
+#: (512 MiB). Raise it with the ``max_values`` keyword.
+MAX_SCALE_VALUES = 2**26
+
 
 def wrap_angle(angle):
-    """Angles wrapped to ``[-pi, pi)``: the signed difference of two directions."""
+    """Angles wrapped to ``[-pi, pi)``: the signed difference of two directions.
+
+    Raises
+    ------
+    ValueError
+        If ``angle`` is not numeric or holds NaN or infinite values.
+    """
+    return _wrap(finite_array(angle, "angle"))
+
+
+def _wrap(angle):
+    """:func:`wrap_angle` without the check, for the package's own finite arrays."""
     return (np.asarray(angle) + np.pi) % (2.0 * np.pi) - np.pi
 
 
@@ -129,9 +145,18 @@ def tangent_angles(points, *, closed: bool) -> np.ndarray:
 
 
 def total_turning(theta) -> float:
-    """Total turning of a closed curve's angles, the closing turn from the last segment to the first included."""
-    theta = np.asarray(theta, dtype=np.float64)
-    return float(theta[-1] + wrap_angle(theta[0] - theta[-1]) - theta[0])
+    """Total turning of a closed curve's angles, the closing turn from the last segment to the first included.
+
+    Raises
+    ------
+    ValueError
+        If ``theta`` is not a non-empty finite 1-D array.
+    """
+    return _total_turning(finite_array(theta, "theta", ndim=1, min_size=1))
+
+
+def _total_turning(theta: np.ndarray) -> float:
+    return float(theta[-1] + _wrap(theta[0] - theta[-1]) - theta[0])
 
 
 def filter_weights(filter_width: int = 9, kernel="uniform") -> np.ndarray:
@@ -173,37 +198,97 @@ def lowpass(theta, weights, *, closed: bool, causal: bool = False) -> np.ndarray
     ``causal=True`` is the paper's *"time-invariant causal linear filter"* (section 3, eq. 2): output ``t``
     weighs samples ``t, t - 1, ..., t - len(weights) + 1`` only, so the result lags the signal by the
     filter's mean delay ``sum_k k w_k`` (half its width for a symmetric filter).
+
+    Raises
+    ------
+    ValueError
+        If ``theta`` or ``weights`` is not a non-empty finite 1-D array.
+    TypeError
+        If ``closed`` or ``causal`` is not a bool.
     """
-    theta = np.asarray(theta, dtype=np.float64)
-    weights = np.asarray(weights, dtype=np.float64)
+    theta, weights = _signal(theta), _taps(weights)
+    return _lowpass(theta, weights, check_flag(closed, "closed"), check_flag(causal, "causal"))
+
+
+def _signal(theta) -> np.ndarray:
+    return finite_array(theta, "theta", ndim=1, min_size=1)
+
+
+def _taps(weights) -> np.ndarray:
+    return finite_array(weights, "weights", ndim=1, min_size=1)
+
+
+def _lowpass(theta: np.ndarray, weights: np.ndarray, closed: bool, causal: bool) -> np.ndarray:
     # convolve1d centres the kernel; moving its origin by half its width makes it use the past only
     origin = -(weights.size // 2) if causal else 0
     if not closed:
         return convolve1d(theta, weights, mode="nearest", origin=origin)
-    slope = total_turning(theta) / theta.size
+    slope = _total_turning(theta) / theta.size
     trend = slope * np.arange(theta.size)
     lag = float(np.dot(np.arange(weights.size), weights)) if causal else 0.0
     return convolve1d(theta - trend, weights, mode="wrap", origin=origin) + trend - slope * lag
 
 
-def multiscale_angles(theta, scales: int, weights, *, closed: bool, causal: bool = False) -> np.ndarray:
-    """The angles at ``scales`` scales, shape ``(scales, n)``: row ``s`` is ``s`` passes of the filter."""
-    levels = [np.asarray(theta, dtype=np.float64)]
+def multiscale_angles(theta, scales: int, weights, *, closed: bool, causal: bool = False,
+                      max_values: int = MAX_SCALE_VALUES) -> np.ndarray:
+    """The angles at ``scales`` scales, shape ``(scales, n)``: row ``s`` is ``s`` passes of the filter.
+
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        Tangent angles (finite).
+    scales : int
+        Number of scales, the unfiltered angles included: at least 1 and at most ``n``, the signal's
+        length (a signal of ``n`` samples has no more scales to tell apart than samples).
+    weights : array_like
+        The filter's taps (:func:`filter_weights`).
+    closed, causal : bool
+        As in :func:`lowpass`.
+    max_values : int
+        Budget: the most values ``scales * n`` the result may hold (default :data:`MAX_SCALE_VALUES`).
+
+    Raises
+    ------
+    ValueError
+        On non-finite input, ``scales`` out of ``[1, n]``, or a result above ``max_values``.
+    """
+    theta, weights = _signal(theta), _taps(weights)
+    scales = integer_at_least(scales, "scales", 1)
+    if scales > theta.size:
+        raise ValueError(f"scales must be at most the signal's length {theta.size}, got {scales}")
+    check_budget(scales * theta.size, integer_at_least(max_values, "max_values", 1), "max_values", "angle values")
+    closed, causal = check_flag(closed, "closed"), check_flag(causal, "causal")
+    levels = [theta]
     for _ in range(scales - 1):
-        levels.append(lowpass(levels[-1], weights, closed=closed, causal=causal))
+        levels.append(_lowpass(levels[-1], weights, closed, causal))
     return np.stack(levels)
 
 
 def integrate_angles(theta, step: float, start=(0.0, 0.0)) -> np.ndarray:
-    """The polyline whose segments have length ``step`` and directions ``theta``: ``len(theta) + 1`` points."""
-    theta = np.asarray(theta, dtype=np.float64)
+    """The polyline whose segments have length ``step`` and directions ``theta``: ``len(theta) + 1`` points.
+
+    Raises
+    ------
+    ValueError
+        If ``theta`` is not a finite 1-D array, ``step`` not a positive finite number or ``start`` not a finite
+        point.
+    """
+    theta = finite_array(theta, "theta", ndim=1)
+    step = positive_number(step, "step")
+    start = point_array(np.reshape(finite_array(start, "start"), (1, -1)), "start")[0]
     moves = step * np.column_stack([np.cos(theta), np.sin(theta)])
-    return np.vstack([np.zeros((1, 2)), np.cumsum(moves, axis=0)]) + np.asarray(start, dtype=np.float64)
+    return np.vstack([np.zeros((1, 2)), np.cumsum(moves, axis=0)]) + start
 
 
 def gyration_radius(points) -> float:
-    """Root mean square distance of the points to their centroid: a curve's size, robust to its wiggles."""
-    points = np.asarray(points, dtype=np.float64)
+    """Root mean square distance of the points to their centroid: a curve's size, robust to its wiggles.
+
+    Raises
+    ------
+    ValueError
+        If ``points`` is not a finite ``(n, 2)`` array with ``n >= 1``.
+    """
+    points = point_array(points, "points", min_points=1)
     return float(np.sqrt(((points - points.mean(axis=0)) ** 2).sum(axis=1).mean()))
 
 
@@ -213,10 +298,18 @@ def match_size(points, reference) -> np.ndarray:
     A detailed curve and a smooth curve of the same arc length differ in size (the detail's wiggles use up
     length), so a coarse version or an elaboration is brought to the size and place of the curve it stands
     for. Both are sets of samples equally spaced in arc length, so their centroids are the curves'.
+
+    Raises
+    ------
+    ValueError
+        If either is not a finite ``(n, 2)`` array, or ``points`` are all one point (no size to scale).
     """
-    points, reference = np.asarray(points, dtype=np.float64), np.asarray(reference, dtype=np.float64)
+    points, reference = point_array(points, "points", min_points=1), point_array(reference, "reference", min_points=1)
     centre = points.mean(axis=0)
-    scale = gyration_radius(reference) / gyration_radius(points)
+    size = gyration_radius(points)
+    if size == 0:
+        raise ValueError("points are all the same point: they have no size to match")
+    scale = gyration_radius(reference) / size
     return (points - centre) * scale + reference.mean(axis=0)
 
 

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .._checks import integer_at_least, positive_number
+from .._checks import check_budget, finite_array, integer_at_least, positive_number
 from ._kernels import rank_by_similarity
 from .curves import (
     check_curve,
@@ -61,7 +61,7 @@ from .curves import (
     multiscale_angles,
     resample_simple,
     tangent_angles,
-    wrap_angle,
+    _wrap,
 )
 
 __all__ = ["SketchModel", "default_weights", "state_similarity", "train"]
@@ -74,6 +74,9 @@ TRANSITIONS = ("sharp", "paper")
 POOL_FACTOR = 6
 #: Fraction of the relative history's variance the PCA embedding keeps (and at most this many components).
 PCA_VARIANCE, PCA_MAX_COMPONENTS = 0.99, 16
+#: Default budget of :func:`train` and :func:`default_weights`: the most angle values the states may hold
+#: (states x scales x order), 2**27 doubles (1 GiB). Raise it with the ``max_values`` keyword.
+MAX_STATE_VALUES = 2**27
 
 
 @dataclass(frozen=True)
@@ -157,24 +160,48 @@ class SketchModel:
         return self.angles[:, self.steering_scale]
 
 
-def default_weights(scales: int, order: int) -> np.ndarray:
+def default_weights(scales: int, order: int, *, max_values: int = MAX_STATE_VALUES) -> np.ndarray:
     """Our default weight matrix W (the paper gives none).
 
     Section 3: *"We configure the weight matrix to maintain consistency over both high resolution details
     early in the history and overall shape."* So the weight of scale ``s`` decays with the history ``tau`` as
     ``exp(-tau / h_s)`` with ``h_s = order (s + 1) / scales``: the finest scale counts mostly over its most
     recent samples, the coarsest over the whole history.
+
+    Raises
+    ------
+    ValueError
+        If ``scales`` or ``order`` is not an integer >= 1, or ``scales * order`` exceeds ``max_values``.
     """
+    scales, order = integer_at_least(scales, "scales", 1), integer_at_least(order, "order", 1)
+    check_budget(scales * order, integer_at_least(max_values, "max_values", 1), "max_values", "weights")
     scale = np.arange(scales)[:, None]
     history = np.arange(order)[None, :]
     return np.exp(-history / (order * (scale + 1) / scales))
 
 
 def state_similarity(a, b, weights, sigma: float) -> np.ndarray:
-    """Eq. (4): the similarity of states ``a`` and ``b`` (arrays ``(..., scales, order)``), in (0, 1]."""
-    difference = wrap_angle(np.asarray(a) - np.asarray(b))
+    """Eq. (4): the similarity of states ``a`` and ``b`` (arrays ``(..., scales, order)``), in (0, 1].
+
+    Raises
+    ------
+    ValueError
+        On non-finite input, ``weights`` not a non-negative ``(scales, order)`` matrix with a positive sum that
+        matches the last two axes of ``a`` and ``b`` (which must broadcast), or ``sigma`` not positive.
+    """
+    a, b = finite_array(a, "a"), finite_array(b, "b")
+    weights = finite_array(weights, "weights", ndim=2)
+    sigma = positive_number(sigma, "sigma")
+    if (weights < 0).any() or weights.sum() <= 0:
+        raise ValueError("weights must be non-negative and not all zero")
+    for name, state in (("a", a), ("b", b)):
+        if state.shape[-2:] != weights.shape:
+            raise ValueError(f"{name} must end in the weights' shape {weights.shape}, got shape {state.shape}")
+    try:
+        difference = _wrap(a - b)
+    except ValueError:
+        raise ValueError(f"a and b must broadcast together, got shapes {a.shape} and {b.shape}") from None
     gaussian = np.exp(-(difference**2) / (2.0 * sigma**2))
-    weights = np.asarray(weights)
     return (gaussian * weights).sum(axis=(-2, -1)) / weights.sum()
 
 
@@ -187,6 +214,17 @@ def _check_weights(weights, scales: int, order: int) -> np.ndarray:
     if not np.isfinite(weights).all() or (weights < 0).any() or weights.sum() <= 0:
         raise ValueError("weights must be finite, non-negative and not all zero")
     return weights
+
+
+def _curve_list(curves) -> list:
+    """The training curves as a non-empty list."""
+    try:
+        curves = list(curves) if curves is not None else []
+    except TypeError:
+        raise TypeError(f"curves must be a sequence of (n, 2) point arrays, got {type(curves).__name__}") from None
+    if not curves:
+        raise ValueError("the training set is empty: give at least one curve")
+    return curves
 
 
 def _curve_angles(curve, samples: int, scales: int, taps, closed: bool, causal: bool, name: str):
@@ -212,6 +250,7 @@ def train(
     subsample: bool = False,
     samples_per_curve: int = 256,
     closed: bool = True,
+    max_values: int = MAX_STATE_VALUES,
 ) -> SketchModel:
     """Learn a class of curves (section 3).
 
@@ -250,6 +289,9 @@ def train(
         Samples per training curve (> order).
     closed : bool
         Whether the training curves are closed (read cyclically).
+    max_values : int
+        Budget: the most angle values the state table may hold (curves x samples_per_curve x scales x order;
+        default :data:`MAX_STATE_VALUES`), checked before any curve is resampled.
 
     Returns
     -------
@@ -259,12 +301,16 @@ def train(
     ------
     ValueError
         On an empty training set, order or scales < 1, a bad curve (NaN, repeated points, self-crossing,
-        fewer than 3 points), or other bad parameters.
+        fewer than 3 points), ``scales`` above ``samples_per_curve`` (no more scales than samples), a state
+        table above ``max_values``, or other bad parameters.
     """
     order = integer_at_least(order, "order", 1)
     scales = integer_at_least(scales, "scales", 1)
     neighbours = integer_at_least(neighbours, "neighbours", 1)
     samples = integer_at_least(samples_per_curve, "samples_per_curve", order + 2)
+    if scales > samples:
+        raise ValueError(f"scales must be at most samples_per_curve ({samples}), got {scales}")
+    max_values = integer_at_least(max_values, "max_values", 1)
     steering_scale = scales - 1 if steering_scale is None else integer_at_least(steering_scale, "steering_scale", 0)
     if steering_scale >= scales:
         raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
@@ -274,11 +320,11 @@ def train(
             raise TypeError(f"{name} must be True or False, got {flag!r}")
     if transitions not in TRANSITIONS:
         raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
+    check_budget(samples * scales * order, max_values, "max_values", "angle values per curve")
     weights = _check_weights(weights, scales, order)
     taps = filter_weights(filter_width, kernel)
-    curves = list(curves) if curves is not None else []
-    if not curves:
-        raise ValueError("the training set is empty: give at least one curve")
+    curves = _curve_list(curves)
+    check_budget(len(curves) * samples * scales * order, max_values, "max_values", "state angle values")
 
     angle_blocks, resampled = [], []
     for k, curve in enumerate(curves):
@@ -347,7 +393,7 @@ def _state_table(angle_blocks, order: int, closed: bool, strides: np.ndarray) ->
         history = samples[:, None, None] - np.arange(order)[None, :, None] * strides[None, None, :]   # (t, tau, s)
         if closed:
             # the history of an early sample wraps to the curve's end: unwrap it by the curve's total turning
-            turning = angles[-1, :] + wrap_angle(angles[0, :] - angles[-1, :]) - angles[0, :]
+            turning = angles[-1, :] + _wrap(angles[0, :] - angles[-1, :]) - angles[0, :]
             laps = np.floor_divide(history, n)
             states = angles[history % n, np.arange(angles.shape[1])] + laps * turning
         else:

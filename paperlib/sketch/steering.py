@@ -57,7 +57,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .._checks import integer_at_least, positive_number
+from .._checks import as_generator, integer_at_least, positive_number
 from ..geometry import as_points, read_svg
 from ._kernels import steer
 from .curves import (
@@ -69,7 +69,7 @@ from .curves import (
     resample_curve,
     resample_simple,
     tangent_angles,
-    wrap_angle,
+    _wrap,
 )
 from .model import SketchModel
 
@@ -140,7 +140,7 @@ def _instantiated_angles(model: SketchModel, states: np.ndarray, phi: np.ndarray
     detail = model.angles[states, 0] - model.steering_angles[states]
     if keep_coarse == "sketch":
         return phi + detail
-    return phi + wrap_angle(model.steering_angles[states] - phi) + detail
+    return phi + _wrap(model.steering_angles[states] - phi) + detail
 
 
 def elaborate(
@@ -232,7 +232,7 @@ def elaborate(
 
     resampled = resample_curve(sketch, n_samples, closed=closed)
     phi = tangent_angles(resampled, closed=closed)
-    uniforms = np.random.default_rng(rng).random(phi.size)
+    uniforms = as_generator(rng).random(phi.size)
     states, restarts = steer(
         phi, np.ascontiguousarray(model.steering_angles), model.position, model.successor, model.neighbours,
         model.transition, sigma, top, mode == "sample", uniforms, -1.0 if window is None else window,

@@ -60,7 +60,7 @@ from typing import NamedTuple
 import numpy as np
 from skimage.draw import disk
 
-from paperlib._checks import integer_at_least, positive_number
+from paperlib._checks import as_generator, integer_at_least, positive_number
 
 __all__ = [
     "INKSEP_VERSION",
@@ -129,7 +129,7 @@ def _check_gray(gray) -> np.ndarray:
 def _seed(rng) -> int:
     if rng is not None and not isinstance(rng, (Integral, np.random.Generator)) or isinstance(rng, bool):
         raise ValueError(f"rng must be None, an int seed or a numpy.random.Generator, got {rng!r}")
-    return int(np.random.default_rng(rng).integers(0, 2**32))
+    return int(as_generator(rng).integers(0, 2**32))
 
 
 def stipple_count(gray, dot_radius: float) -> int:

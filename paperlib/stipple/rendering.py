@@ -68,6 +68,8 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
+
+from paperlib._checks import as_generator
 from skimage.morphology import remove_small_holes, remove_small_objects
 
 from .extraction import Mark
@@ -347,7 +349,7 @@ def render_tone(distribution, marks, rng=None) -> np.ndarray:
     """
     centres = check_bitonal(distribution)
     library, white = _checked_library(marks, 0)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     canvas = np.full(centres.shape, white)
     rows, cols = np.nonzero(centres)
     _stamp_random_marks(canvas, rows, cols, library, not white, rng)
@@ -398,7 +400,7 @@ def tone_gray_levels(distribution_textures, marks_per_tone, *, repeats: int = 1,
     libraries, _ = _checked_libraries(marks_per_tone, len(tiles))
     if isinstance(repeats, bool) or not isinstance(repeats, (int, np.integer)) or repeats < 1:
         raise ValueError(f"repeats must be an integer >= 1, got {repeats!r}")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     side = tiles[0].shape[0]
     grays = np.empty(len(tiles))
     for tone, (tile, library) in enumerate(zip(tiles, libraries)):
@@ -457,7 +459,7 @@ def select_tones(image, tone_grays, rng=None, *, pure_levels: bool = True) -> np
     """
     gray = _checked_image(image)
     grays = level_grays(tone_grays, pure_levels=pure_levels)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     order = np.argsort(grays)
     tone_index = np.empty(gray.shape, dtype=np.int64)
     # uniforms drawn a band of rows at a time (the same stream as one draw of the whole image)
@@ -520,7 +522,7 @@ def distribution_image(tone_index, distribution_textures, rng=None, *, pure_leve
     tiles = _checked_tiles(distribution_textures)
     pure_levels = _checked_pure_levels(pure_levels)
     index = _checked_tone_index(tone_index, len(tiles), pure_levels)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     side = tiles[0].shape[0]
     cells = (-(-index.shape[0] // side), -(-index.shape[1] // side))
     turns = rng.integers(0, 4, size=(len(tiles), *cells))
@@ -605,7 +607,7 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None, *, pure_leve
     index = _checked_tone_index(tone_index, len(libraries), pure_levels)
     if index.shape != centres.shape:
         raise ValueError(f"distribution {centres.shape} and tone_index {index.shape} must have one shape")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     # the starting colour of every level (True = ink) and the library of every stipple level
     starts_as_ink = np.concatenate([[False], white, [True]]) if pure_levels else white
     first = 1 if pure_levels else 0
@@ -714,7 +716,7 @@ def render_stippling(
     tiles = _checked_tiles(distribution_textures)
     libraries, _ = _checked_libraries(marks_per_tone, len(tiles))
     pure_levels = _checked_pure_levels(pure_levels)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     if tone_grays is None:
         grays = tone_gray_levels(tiles, libraries, rng=rng)
     else:

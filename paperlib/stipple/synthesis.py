@@ -49,6 +49,8 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
+
+from paperlib._checks import as_generator
 from scipy.spatial import cKDTree
 from skimage.measure import label, regionprops
 
@@ -599,7 +601,7 @@ def synthesize_distribution(
     groups = offset_directions(offsets) if acceptance == "every_direction" else np.zeros(len(offsets), np.int64)
     target = np.ascontiguousarray(normalized_glcms(cooccurrence_counts(target_texture, offsets)))
     constraint = _checked_geometry(geometry, target_texture, spacing)
-    generator = np.random.default_rng(rng)
+    generator = as_generator(rng)
     target_ink = target_texture.mean() * texture.size
 
     def run_with(quantiles, fallback):

@@ -35,6 +35,8 @@ import numpy as np
 from scipy.ndimage import uniform_filter
 from skimage.measure import label
 
+from paperlib._checks import finite_array, positive_number
+
 __all__ = ["ToneMap", "block_gray_levels", "extract_tone_map", "largest_rectangle", "segment_blocks"]
 
 #: Paper's block size for Figure 4 (pixels).
@@ -209,7 +211,15 @@ def segment_blocks(block_gray, t1) -> np.ndarray:
     -------
     ndarray of int
         Region number of every block, 1, 2, ... in order of creation.
+
+    Raises
+    ------
+    ValueError
+        If ``block_gray`` is not a finite 2-D array or ``t1`` not a non-negative number.
     """
+    finite_array(block_gray, "block_gray", ndim=2)  # checked, used as given (no dtype change)
+    positive_number(t1, "t1", allow_zero=True)
+    block_gray = np.asarray(block_gray)
     labels = np.zeros(block_gray.shape, dtype=np.int64)
     next_label = 1
     for flat in _seed_order(block_gray):

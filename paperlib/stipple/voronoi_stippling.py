@@ -56,7 +56,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 from skimage.draw import disk
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, positive_number
 
 __all__ = ["VoronoiStipples", "render_stipples", "stipple_density", "weighted_centroids", "weighted_voronoi_stipples"]
 
@@ -317,7 +317,7 @@ def weighted_voronoi_stipples(image, n_points, *, iterations=50, tol=0.01, rng=N
     tol = positive_number(tol, "tol", allow_zero=True)
     if not density.max() > 0:
         raise ValueError("image is all white: there is no density to place stipples in")
-    generator = np.random.default_rng(rng)
+    generator = as_generator(rng)
 
     points = _rejection_sample(density, n_points, generator)
     pixel_xy, weights = _weighted_pixels(density)

@@ -33,7 +33,7 @@ import shapely
 from matplotlib.colors import to_rgb
 from scipy.spatial import Delaunay, QhullError
 
-from .._checks import positive_number
+from .._checks import check_edges, positive_number
 from ..geometry import (
     Element,
     OrientedBoxes,
@@ -309,15 +309,7 @@ def cluster_strokes(strokes, epsilon: float, *, contour: bool = False) -> np.nda
 
 def graph_edges(edges, n: int, name: str = "edges") -> np.ndarray:
     """``edges`` as an ``(m, 2)`` int64 array of node pairs, each node in ``[0, n)``; ValueError otherwise."""
-    array = np.asarray(edges)
-    if array.size == 0:
-        return np.empty((0, 2), dtype=np.int64)
-    if array.ndim != 2 or array.shape[1] != 2 or not np.issubdtype(array.dtype, np.integer):
-        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs, got {array.dtype} of shape "
-                         f"{array.shape}")
-    if array.min() < 0 or array.max() >= n:
-        raise ValueError(f"{name} name nodes outside [0, {n}): {int(array.min())} to {int(array.max())}")
-    return array.astype(np.int64)
+    return check_edges(edges, n, name)
 
 
 def chain_edges(order) -> np.ndarray:

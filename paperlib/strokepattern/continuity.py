@@ -29,6 +29,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
+from paperlib._checks import as_generator
 from scipy.stats import ks_2samp
 
 from ..geometry import Element
@@ -265,7 +267,7 @@ def shuffled(synthesis, *, rng=None):
     Each element keeps its orientation relative to its local frame; the result has ``elements``, ``frames``,
     ``edges`` and ``source`` like the synthesis, for :func:`compare_continuity`.
     """
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     order = rng.permutation(len(synthesis.elements))
     centres = fit_elements(synthesis.elements).centers
     elements = tuple(place_element(synthesis.elements[k], centres[k], synthesis.frames[i] - synthesis.frames[k],

@@ -55,7 +55,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import breadth_first_order
 
 from ..geometry import Element, Stroke, lloyd_relaxation
-from .._checks import positive_number
+from .._checks import as_generator, positive_number
 from ._kernels import BEST, CLOSE, RANDOM, grow
 from .analysis import (
     PatternAnalysis,
@@ -129,7 +129,7 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> S
     """
     path, length = _extent(path, 1)
     n = _count(n)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     start = (np.arange(n) + rng.random(n)) * (length / n)
     arc = _lloyd_1d(start, length, _iterations(iterations))
     return Seeds(_points_on_path(path, arc), path_frames(path, arc), chain_edges(np.arange(n)), arc)
@@ -157,7 +157,7 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) ->
     n = _count(n)
     if n < 3:
         raise ValueError(f"a 2D synthesis needs at least 3 seeds, got {n}: enlarge the region")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     positions = lloyd_relaxation(_uniform_in(region, n, rng), region, _iterations(iterations))
     return Seeds(positions, np.zeros(n), unskewed_delaunay_edges(positions), np.full(n, np.nan))
 
@@ -193,14 +193,15 @@ def ring_neighbourhoods(n: int, edges, rings: int):
     if isinstance(rings, bool) or not isinstance(rings, (int, np.integer)) or rings < 1:
         raise ValueError(f"rings (the neighbourhood size k) must be an integer >= 1, got {rings!r}")
     n = _count(n)
-    adjacency = _adjacency(n, edges)
-    reach = sparse.identity(n, dtype=np.int8, format="csr")
+    adjacency = _adjacency(n, edges).astype(bool)
+    # boolean products (or of ands): path counts in int8 would wrap past 127 and drop reachable nodes
+    reach = sparse.identity(n, dtype=bool, format="csr")
     for _ in range(int(rings)):
-        grown = ((reach + reach @ adjacency) > 0).astype(np.int8)
+        grown = (reach + reach @ adjacency).tocsr()
         if grown.nnz == reach.nnz:  # every neighbourhood is a whole connected component: more rings add nothing
             break
         reach = grown
-    reach = (reach - sparse.identity(n, dtype=np.int8, format="csr")).tocsr()
+    reach = (reach.astype(np.int8) - sparse.identity(n, dtype=np.int8, format="csr")).tocsr()
     reach.eliminate_zeros()
     reach.sort_indices()
     return reach.indptr.astype(np.int64), reach.indices.astype(np.int64)
@@ -451,7 +452,7 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     dimension = analysis.dimension
     shape, _ = _extent(target, dimension)
     count = target_count(analysis, shape) if n is None else _count(n)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     seed_rng, choice_rng = rng.spawn(2)
     make_seeds = seeds_1d if dimension == 1 else seeds_2d
     seeds = make_seeds(shape, count, iterations=iterations, rng=seed_rng)

@@ -27,6 +27,8 @@ import dataclasses
 
 import numpy as np
 
+from paperlib._checks import as_generator
+
 from ..geometry import Element, Stroke
 from .analysis import PatternAnalysis, neighbour_lists, neighbourhood_areas
 from .synthesis import Synthesis
@@ -97,7 +99,7 @@ def exchange_parameters(synthesis: Synthesis, analysis: PatternAnalysis, amount:
     amount = float(amount)
     if not 0.0 <= amount <= 1.0:
         raise ValueError(f"amount must lie in [0, 1], got {amount!r}")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     size = max(1, int(round(amount * len(analysis))))
     angles = np.mod(analysis.boxes.angles - analysis.frames, np.pi)
     lengths, thicknesses = (2.0 * analysis.boxes.half_lengths).T

@@ -67,6 +67,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from paperlib._checks import as_generator
+
 from paperlib import datasets
 from paperlib.widgets._base import ExplorerBase
 from paperlib.datasets.stipple import stipple_tone_sheet, stipple_tone_texture
@@ -211,7 +213,7 @@ class StippleSource:
 
 def _single_tone_library(texture, *, size: int, iterations: int, rng) -> StippleLibrary:
     """Sections 3.2, 3.4 and 4.1 for one texture (a library of one tone cannot render an image)."""
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     distribution = extract_distribution(texture)
     synthesis = synthesize_distribution(distribution.distribution, size=size, iterations=iterations, rng=rng)
     marks = extract_marks(texture, distribution.level)
