@@ -94,7 +94,6 @@ def test_empty_pattern_is_allowed():
     [
         (dict(points=[[0.5, np.nan]]), "NaN"),
         (dict(points=[[1.5, 0.5]]), "outside the window"),
-        (dict(points=[[0.5, 0.5], [0.5, 0.5]]), "coincident"),
         (dict(points=[[0.5, 0.5]], marks=[0, 1]), "shape"),
         (dict(points=[[0.5, 0.5]], marks=[2], categories=["a", "b"]), "0..1"),
         (dict(points=[[0.5, 0.5]], marks=[0.5]), "integer"),

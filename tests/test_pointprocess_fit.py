@@ -356,11 +356,9 @@ def test_radius_below_hard_core_and_unknown_options():
         hardcore_distances(cells, "median")
 
 
-def test_zero_area_window_and_coincident_points_are_refused_upstream():
+def test_zero_area_window_is_refused_upstream():
     with pytest.raises(ValueError, match="positive area"):
         Window.rectangle((0, 0), (0, 1))
-    with pytest.raises(ValueError, match="coincident"):
-        PointPattern([[0.1, 0.1], [0.1, 0.1], [0.5, 0.5]], Window.rectangle())
 
 
 def test_category_lost_to_the_border_correction():

@@ -402,7 +402,7 @@ def _mask_circle_fractions(cx, cy, radius, safe_radius, mask, x0, y0, dx, dy):  
     out = np.ones(len(cx))
     for p in range(len(cx)):
         rad = radius[p]
-        if safe_radius[p] >= rad:
+        if safe_radius[p] >= rad or rad == 0.0:  # a circle of radius 0 (coincident points): weight 1
             continue
         k_lo, k_hi = int(np.ceil((cx[p] - rad - x0) / dx)), int(np.floor((cx[p] + rad - x0) / dx))
         m_lo, m_hi = int(np.ceil((cy[p] - rad - y0) / dy)), int(np.floor((cy[p] + rad - y0) / dy))

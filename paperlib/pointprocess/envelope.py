@@ -18,6 +18,8 @@ Baddeley, A., Rubak, E., Turner, R. (2015). Spatial Point Patterns, section 10.7
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 import pandas as pd
 
@@ -30,6 +32,7 @@ from .processes import rpoispp
 __all__ = ["envelope"]
 
 _KINDS = ("pointwise", "global")
+DEFAULT_NSIM = 99  # spatstat's
 
 
 def _simulate(task, rng):
@@ -41,7 +44,86 @@ def _simulate(task, rng):
         from .simulate import rmh
 
         pattern = rmh(model, window, rng=rng, **simulate_kwargs)
+    return _curve(fun, pattern, r, column, fun_kwargs)
+
+
+def _summarise(task):
+    """A given pattern, summarised (spatstat's ``envelope(..., simulate = <list of patterns>)``)."""
+    fun, fun_kwargs, column, r, pattern = task
+    return _curve(fun, pattern, r, column, fun_kwargs)
+
+
+def _curve(fun, pattern, r, column, fun_kwargs):
     return fun(pattern, r=r, **fun_kwargs)[column].to_numpy()
+
+
+def _simulated_curves(observed: PointPattern, fun, *, model=None, patterns=None, nsim=None, r=None, column=None,
+                     fun_kwargs=None, simulate_kwargs=None, rng=None, client=None, workers=None,
+                     progress: bool = False, desc: str = "envelope"):
+    """The observed summary function and ``nsim`` simulated ones on its r grid.
+
+    The one place where simulations of a null model (CSR with the observed intensity of each
+    type, or ``model`` by :func:`~paperlib.pointprocess.simulate.rmh`), or given patterns, are
+    summarised, through :func:`paperlib.parallel.run_many`; :func:`envelope` and the global
+    tests of :mod:`paperlib.pointprocess.gof` use it. Arguments as for :func:`envelope`, plus
+    ``patterns``: a sequence of PointPatterns used instead of simulations (its first ``nsim``;
+    all of them when ``nsim`` is None).
+
+    Returns
+    -------
+    observed_values : pandas.DataFrame
+        ``fun(observed, r=r, **fun_kwargs)``.
+    column : str
+        The estimate used (default: the first column after ``r`` and ``theo``).
+    simulated : ndarray, shape (nsim, len(r))
+    """
+    if not isinstance(observed, PointPattern):
+        raise ValueError(f"observed must be a PointPattern, got {type(observed).__name__}")
+    if model is not None and patterns is not None:
+        raise ValueError("give a model to simulate or a list of patterns, not both")
+    patterns = _checked_patterns(patterns)
+    nsim = _checked_nsim(nsim, patterns)
+    if model is not None and model.n_types != observed.n_types:
+        raise ValueError(f"the model has {model.n_types} types, the observed pattern {observed.n_types}")
+    fun_kwargs = dict(fun_kwargs or {})
+    observed_values = fun(observed, r=r, **fun_kwargs)
+    column = column or [c for c in observed_values.columns if c not in ("r", "theo")][0]
+    if column not in observed_values.columns:
+        raise ValueError(f"fun gives no column {column!r}; it gives {list(observed_values.columns)}")
+    r = observed_values["r"].to_numpy()
+    options = dict(client=client, workers=workers, progress=progress, desc=desc)
+    if patterns is not None:
+        tasks = [(fun, fun_kwargs, column, r, pattern) for pattern in patterns[:nsim]]
+        curves = run_many(_summarise, tasks, seeded=False, **options)
+    else:
+        intensity = observed.counts / observed.window.area
+        task = (fun, fun_kwargs, column, r, model, observed.window, observed.categories, intensity,
+                dict(simulate_kwargs or {}))
+        curves = run_many(_simulate, [task] * nsim, rng=rng, **options)
+    return observed_values, column, np.vstack(curves)
+
+
+def _checked_patterns(patterns):
+    if patterns is None:
+        return None
+    if isinstance(patterns, PointPattern) or not isinstance(patterns, Sequence):
+        raise TypeError(f"patterns must be a sequence (list, tuple) of PointPatterns, got {type(patterns).__name__}")
+    wrong = [i for i, pattern in enumerate(patterns) if not isinstance(pattern, PointPattern)]
+    if wrong:
+        raise TypeError(f"patterns[{wrong[0]}] is a {type(patterns[wrong[0]]).__name__}, not a PointPattern")
+    if not patterns:
+        raise ValueError("patterns is empty: give at least one simulated pattern")
+    return list(patterns)
+
+
+def _checked_nsim(nsim, patterns) -> int:
+    if nsim is None:
+        return DEFAULT_NSIM if patterns is None else len(patterns)
+    if isinstance(nsim, bool) or not isinstance(nsim, (int, np.integer)) or nsim < 1:
+        raise ValueError(f"nsim must be a positive integer, got {nsim!r}")
+    if patterns is not None and nsim > len(patterns):
+        raise ValueError(f"nsim={nsim} but only {len(patterns)} patterns were given")
+    return int(nsim)
 
 
 def envelope(
@@ -49,7 +131,7 @@ def envelope(
     fun,
     *,
     model: MultiStraussHard | None = None,
-    nsim: int = 99,
+    nsim: int = DEFAULT_NSIM,
     nrank: int = 1,
     kind: str = "pointwise",
     r=None,
@@ -104,30 +186,17 @@ def envelope(
         simulations); ``attrs`` hold ``nsim``, ``nrank``, ``kind``, ``column`` and the
         significance level ``alpha``.
     """
-    if not isinstance(observed, PointPattern):
-        raise ValueError(f"observed must be a PointPattern, got {type(observed).__name__}")
     if kind not in _KINDS:
         raise ValueError(f"kind must be one of {_KINDS}, got {kind!r}")
-    for name, value in (("nsim", nsim), ("nrank", nrank)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    nsim = _checked_nsim(nsim, None)
+    if isinstance(nrank, bool) or not isinstance(nrank, (int, np.integer)) or nrank < 1:
+        raise ValueError(f"nrank must be a positive integer, got {nrank!r}")
     if 2 * nrank > nsim:
         raise ValueError(f"nrank={nrank} needs at least {2 * nrank} simulations, got nsim={nsim}")
-    if model is not None and model.n_types != observed.n_types:
-        raise ValueError(f"the model has {model.n_types} types, the observed pattern {observed.n_types}")
-    fun_kwargs = dict(fun_kwargs or {})
-    observed_values = fun(observed, r=r, **fun_kwargs)
-    column = column or [c for c in observed_values.columns if c not in ("r", "theo")][0]
-    if column not in observed_values.columns:
-        raise ValueError(f"fun gives no column {column!r}; it gives {list(observed_values.columns)}")
+    observed_values, column, simulated = _simulated_curves(
+        observed, fun, model=model, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
+        simulate_kwargs=simulate_kwargs, rng=rng, client=client, workers=workers, progress=progress)
     r = observed_values["r"].to_numpy()
-    intensity = observed.counts / observed.window.area
-    task = (fun, fun_kwargs, column, r, model, observed.window, observed.categories, intensity,
-            dict(simulate_kwargs or {}))
-    simulated = np.vstack(
-        run_many(_simulate, [task] * nsim, rng=rng, client=client, workers=workers, progress=progress,
-                 desc="envelope")
-    )
     theo = observed_values["theo"].to_numpy()
     lo, hi = _bounds(simulated, theo, nrank, kind)
     result = pd.DataFrame(

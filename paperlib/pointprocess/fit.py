@@ -55,6 +55,18 @@ reported as not identifiable. Both cases are flagged in the coefficient table's 
 column and by a warning. A category with no fitted data point (all of them within rbord of the
 boundary) has no finite intensity estimate: a ``ValueError`` says so.
 
+Hurtut's constraint 0 <= gamma <= 1. The paper's model (section 3.1) has gamma in [0, 1]; the
+unconstrained maximum of the log PL gives gamma > 1 on clustered data. ``ppm(..., gamma_max=1.0)``
+maximises the log PL over log gamma <= log gamma_max (a primal active-set Newton method, with the
+KKT conditions checked: :func:`_maximise_bounded`). A gamma held at the bound is reported with
+status ``"boundary (gamma = gamma_max)"`` and no standard error; the other coefficients and
+their variances are those of the submodel with that gamma fixed (an offset). With gamma_max = 1
+this is what spatstat's ``ppm(..., project = TRUE)`` returns for the interactions it requires to
+have gamma <= 1 (``Strauss``; ``MultiStraussHard`` pairs without hard core): the valid submodel,
+refitted without the offending terms, of largest log PL. spatstat accepts gamma > 1 when there is
+a hard core, Hurtut does not; there the bounded fit equals spatstat's fit of that submodel
+(``Hardcore``, or a ``MultiStraussHard`` whose dropped pairs keep their hard cores).
+
 References
 ----------
 Hurtut, T., Landes, P.-E., Thollot, J., Gousseau, Y., Drouilhet, R. and Coeurjolly, J.-F.
@@ -81,7 +93,7 @@ import pandas as pd
 from scipy.spatial import cKDTree
 
 from .models import MultiStraussHard, interaction_counts, interaction_pairs
-from .pattern import PointPattern
+from .pattern import PointPattern, require_distinct
 from .quadrature import QuadratureScheme, default_nd, quadscheme
 from .summary import Lcross, Lest
 
@@ -112,8 +124,14 @@ MAX_FINE_ND = 512
 MAX_FINE_DUMMIES = 2**19
 
 NEWTON_MAX_ITERATIONS = 100
+MAX_ACTIVE_SET_CHANGES = 100  # bounded fits: changes of the set of coefficients held at their bound
 NEWTON_TOLERANCE = 1e-11
 ROUNDING_RESOLUTION = 64 * np.finfo(np.float64).eps  # relative precision of the log PL's value
+
+GAMMA_ZERO = "boundary (gamma = 0)"
+GAMMA_MAX = "boundary (gamma = gamma_max)"
+NOT_IDENTIFIABLE = "not identifiable (gamma = 1)"
+NOT_IDENTIFIABLE_CAPPED = "not identifiable (gamma = gamma_max)"
 
 
 # ============================================================================ input checks
@@ -191,6 +209,12 @@ def hardcore_distances(pattern: PointPattern, method: str = "minimum") -> np.nda
     ndarray, shape (n_types, n_types)
         Symmetric; ``inf`` where a category has a single point (no pair of its own).
 
+    Raises
+    ------
+    ValueError
+        For a pattern with repeated locations (:meth:`PointPattern.duplicated`): a hard core
+        of 0 is no hard core; drop them with :meth:`PointPattern.unique`.
+
     References
     ----------
     Hurtut et al. (2009), section 3.2.1.
@@ -198,6 +222,7 @@ def hardcore_distances(pattern: PointPattern, method: str = "minimum") -> np.nda
     _check_choice(method, HARDCORE_METHODS, "method")
     if not isinstance(pattern, PointPattern):
         raise TypeError(f"pattern must be a PointPattern, got {type(pattern).__name__}")
+    require_distinct(pattern, "estimating hard cores (hardcore_distances, fit_strauss_hardcore)")
     minimum = _minimum_distances(pattern)
     if method == "minimum":
         return minimum
@@ -418,10 +443,11 @@ class PPMFit:
         spatstat's parametrisation (see the module docstring), indexed by spatstat's
         coefficient names, with columns ``estimate``, ``se`` (Coeurjolly-Rubak sandwich, what
         spatstat reports), ``se_hessian`` (inverse Fisher information of the log PL) and
-        ``status`` (``"estimated"``, ``"boundary (gamma = 0)"`` or ``"not identifiable
-        (gamma = 1)"``).
+        ``status`` (``"estimated"``, ``"boundary (gamma = 0)"``, ``"boundary (gamma =
+        gamma_max)"``, ``"not identifiable (gamma = 1)"``, or ``"not identifiable (gamma =
+        gamma_max)"`` when gamma_max < 1).
     vcov, vcov_hessian : pandas.DataFrame
-        The two variance matrices over the estimated coefficients.
+        The two variance matrices over the estimated coefficients (those at a bound excluded).
     log_pl : float
         The maximised log pseudolikelihood (spatstat's ``logLik``).
     quadrature : QuadratureScheme
@@ -432,6 +458,8 @@ class PPMFit:
         Number of quadrature points in the sums (spatstat's ``sum(getglmsubset(fit))``).
     iterations : int
         Newton iterations used.
+    gamma_max : float or None
+        The upper bound on gamma the fit was constrained by (None: unconstrained).
     """
 
     model: MultiStraussHard
@@ -444,6 +472,7 @@ class PPMFit:
     rbord: float
     n_fitted: int
     iterations: int
+    gamma_max: float | None = None
 
     @property
     def beta(self) -> pd.Series:
@@ -574,8 +603,8 @@ def _resolve_degenerate_terms(design, is_data, fitted, n_trend):
         boundary = active[(on_data == 0) & (anywhere > 0)]
         if unidentifiable.size == 0 and boundary.size == 0:
             return fitted, status
-        status[unidentifiable] = "not identifiable (gamma = 1)"
-        status[boundary] = "boundary (gamma = 0)"
+        status[unidentifiable] = NOT_IDENTIFIABLE
+        status[boundary] = GAMMA_ZERO
         fitted = fitted & (design[:, n_trend + boundary] == 0).all(axis=1)
 
 
@@ -593,8 +622,9 @@ def _check_categories_fitted(pattern: PointPattern, fitted_data, rbord) -> None:
 class _Maximum:
     theta: np.ndarray
     log_pl: float
-    information: np.ndarray  # negative Hessian of the log PL (Fisher information)
+    information: np.ndarray  # negative Hessian of the log PL (Fisher information) over the free coefficients
     iterations: int
+    at_bound: np.ndarray | None = None  # bounded fits: which coefficients are held at their upper bound
 
 
 def _log_pl(theta, design, weights, data_statistic):
@@ -642,6 +672,113 @@ def _halving_step(theta, step, value, design, weights, data_statistic):
     raise ValueError("the pseudolikelihood maximisation stalled (no ascent along the Newton direction)")
 
 
+def _maximise_bounded(design, weights, is_data, start, upper) -> _Maximum:
+    """Maximise the concave log PL subject to theta <= upper, by a primal active-set method.
+
+    The iterate stays feasible. Each round maximises the log PL over the free coefficients,
+    those at their bound held fixed (:func:`_maximise_with_fixed`, Newton as in
+    :func:`_maximise_log_pl`). If that maximiser leaves the box, the iterate moves towards it
+    only as far as the first bound it meets (the log PL, concave, increases along the way) and
+    that coefficient joins the fixed set. Otherwise it is the maximum over this fixed set, and
+    the KKT conditions are checked: a fixed coefficient whose partial derivative is negative
+    (the log PL would grow by lowering it) by more than the Newton tolerance is released, the
+    most negative first. The log PL strictly increases from one fixed set to the next, so none
+    recurs and the method terminates; it stops at a point satisfying the KKT conditions, which
+    for a concave function is the constrained maximum. With no finite bound (``gamma_max``
+    None) the first round is :func:`_maximise_log_pl` from ``start`` and nothing else runs.
+
+    Returns a :class:`_Maximum` whose ``information`` is over the free coefficients only and
+    whose ``at_bound`` marks the fixed ones (their ``theta`` equals ``upper``).
+    """
+    theta = np.minimum(start, upper)  # a feasible start (start itself unless gamma_max < 1)
+    fixed = np.zeros(len(theta), dtype=bool)
+    data_statistic = design[is_data].sum(axis=0)
+    iterations = 0
+    for _ in range(MAX_ACTIVE_SET_CHANGES):
+        maximum = _maximise_with_fixed(design, weights, is_data, theta, fixed)
+        iterations += maximum.iterations
+        target = maximum.theta
+        leaving = ~fixed & (target > upper)
+        if leaving.any():
+            theta, fixed = _step_to_first_bound(theta, target, upper, leaving, fixed)
+            continue
+        release = _kkt_violations(target, fixed, design, weights, data_statistic, maximum.log_pl)
+        if release < 0:
+            return _Maximum(target, maximum.log_pl, maximum.information, iterations, fixed)
+        theta, fixed = target, fixed.copy()
+        fixed[release] = False
+    raise ValueError(f"the bounded pseudolikelihood maximisation did not settle on its active set in "
+                     f"{MAX_ACTIVE_SET_CHANGES} changes (coefficients {theta.tolist()})")
+
+
+def _maximise_with_fixed(design, weights, is_data, theta, fixed) -> _Maximum:
+    """Maximise over the free coefficients, the fixed ones entering as an offset in the weights.
+
+    log PL = s . theta - sum_j w_j exp(eta_j): with eta = X_f theta_f + X_x theta_x, the fixed
+    part multiplies the weights by exp(X_x theta_x) and adds s_x . theta_x to the value.
+    """
+    if not fixed.any():
+        maximum = _maximise_log_pl(design, weights, is_data, theta)
+        return _Maximum(maximum.theta, maximum.log_pl, maximum.information, maximum.iterations, fixed)
+    offset = design[:, fixed] @ theta[fixed]
+    free = _maximise_log_pl(design[:, ~fixed], weights * np.exp(offset), is_data, theta[~fixed])
+    full = theta.copy()
+    full[~fixed] = free.theta
+    log_pl = free.log_pl + float(offset[is_data].sum())
+    return _Maximum(full, log_pl, free.information, free.iterations, fixed)
+
+
+def _step_to_first_bound(theta, target, upper, leaving, fixed):
+    """Move from feasible ``theta`` towards ``target`` up to the first bound met; fix it there."""
+    step = target - theta
+    fractions = np.full(len(theta), np.inf)
+    fractions[leaving] = (upper[leaving] - theta[leaving]) / step[leaving]
+    alpha = fractions.min()
+    moved = np.minimum(theta + alpha * step, upper)
+    hits = fractions <= alpha
+    moved[hits] = upper[hits]
+    return moved, fixed | hits
+
+
+def _kkt_violations(theta, fixed, design, weights, data_statistic, value) -> int:
+    """The fixed coefficient to release (most negative scaled derivative), or -1 if KKT holds.
+
+    At an upper bound the KKT condition is d logPL / d theta_c >= 0. A negative derivative
+    counts only if lowering theta_c alone would gain more than Newton's stopping rule
+    resolves: g_c^2 / I_cc > tolerance (1 + |log PL|), I_cc the Fisher information of theta_c.
+    """
+    if not fixed.any():
+        return -1
+    _, intensity = _log_pl(theta, design, weights, data_statistic)
+    columns = design[:, fixed]
+    gradient = data_statistic[fixed] - columns.T @ intensity
+    information = (columns * columns * intensity[:, None]).sum(axis=0)
+    scaled = np.where(gradient < 0, -gradient**2 / information, 0.0)
+    tolerance = max(NEWTON_TOLERANCE**2, ROUNDING_RESOLUTION) * (1 + abs(value))
+    if scaled.min() >= -tolerance:
+        return -1
+    return int(np.flatnonzero(fixed)[np.argmin(scaled)])
+
+
+def _upper_bounds(n_coefficients: int, n_trend: int, gamma_max) -> np.ndarray:
+    """Upper bound of every estimated coefficient: none for the trend, log gamma_max for gamma."""
+    upper = np.full(n_coefficients, np.inf)
+    if gamma_max is not None:
+        upper[n_trend:] = math.log(gamma_max)
+    return upper
+
+
+def _check_gamma_max(gamma_max):
+    if gamma_max is None:
+        return None
+    if isinstance(gamma_max, (bool, np.bool_)) or not isinstance(gamma_max, (int, float, np.integer, np.floating)):
+        raise ValueError(f"gamma_max must be a positive finite float or None, got {gamma_max!r}")
+    if not (math.isfinite(gamma_max) and gamma_max > 0):
+        raise ValueError(f"gamma_max must be a positive finite float or None (1.0 for Hurtut's 0 <= gamma <= 1), "
+                         f"got {gamma_max!r}")
+    return float(gamma_max)
+
+
 def _starting_point(design, weights, is_data, types, n_types):
     # log of the observed intensity per category, as contrasts with the first; no interaction
     fitted_counts = np.bincount(types[is_data], minlength=n_types)
@@ -654,7 +791,7 @@ def _starting_point(design, weights, is_data, types, n_types):
 
 
 def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: str = "border",
-        quadrature=None, pair_distance=None) -> PPMFit:
+        quadrature=None, pair_distance=None, gamma_max: float | None = None) -> PPMFit:
     """Fit beta and gamma of a (multitype) Strauss hard-core model by maximum pseudolikelihood.
 
     spatstat's ``ppm(X ~ marks, MultiStraussHard(iradii = r, hradii = hc))`` (``ppm(X ~ 1,
@@ -688,6 +825,20 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
         the caller gives each quadrature point an object (:mod:`paperlib.arrangement`).
         Requires an explicit ``quadrature`` scheme, whose indices the callable knows. The
         border correction then uses rbord = max r + ``pair_distance.padding``.
+    gamma_max : float, optional
+        Upper bound on every gamma, a positive finite float. None (default): unconstrained,
+        as spatstat's ``ppm``. 1.0: Hurtut's model, whose interaction strengths lie in [0, 1]
+        (section 3.1; clustered data otherwise give gamma > 1). The log PL is maximised over
+        log gamma <= log gamma_max by an active-set Newton method (KKT conditions checked; see
+        the module notes). A gamma at the bound has status ``"boundary (gamma =
+        gamma_max)"``, no standard error, and is left out of ``vcov``; the other coefficients
+        are those of the model refitted with it fixed there. With gamma_max = 1 this is
+        spatstat's ``ppm(..., project = TRUE)`` for interactions it requires to have gamma <= 1
+        (``Strauss``, ``MultiStrauss``, ``MultiStraussHard`` pairs without hard core): their
+        projection refits the model without the offending terms (gamma = 1) and keeps the
+        valid submodel of highest log PL. spatstat accepts gamma > 1 with a hard core (a valid
+        model, unlike Hurtut's); the constrained fit then equals spatstat's fit of the
+        submodel (``Hardcore``, or ``MultiStraussHard`` with ``iradii`` NA for those pairs).
 
     Returns
     -------
@@ -697,8 +848,10 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
     ------
     ValueError
         For a pattern of fewer than 2 points or a category of fewer than 3; inconsistent or
-        invalid r / hc (shape, symmetry, hc > r); a hard core that some data pair violates;
-        a category with no point inside the border-corrected window; no convergence.
+        invalid r / hc (shape, symmetry, hc > r); repeated locations with some hc > 0 (without
+        hard core they are fitted as spatstat does: a pair at distance 0 interacts); a hard
+        core that some data pair violates; a category with no point inside the
+        border-corrected window; no convergence; a bad ``gamma_max``.
 
     References
     ----------
@@ -707,7 +860,10 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
     """
     pattern = _check_pattern(pattern)
     _check_choice(correction, CORRECTIONS, "correction")
+    gamma_max = _check_gamma_max(gamma_max)
     interaction = _interaction(pattern, r, hc, closed)
+    if (interaction.hc > 0).any():
+        require_distinct(pattern, "ppm with a hard core (hc > 0)")
     if pair_distance is not None and not isinstance(quadrature, QuadratureScheme):
         raise ValueError("pair_distance needs an explicit quadrature scheme (its indices are the callable's i)")
     _check_data_respect_hardcore(pattern, interaction, pair_distance)
@@ -728,24 +884,36 @@ def ppm(pattern: PointPattern, r, hc=0.0, *, closed: bool = False, correction: s
 
     X, w, is_data = design[fitted][:, active], quadrature.weights[fitted], quadrature.is_data[fitted]
     start = _starting_point(X, w, is_data, quadrature.types[fitted], pattern.n_types)
-    maximum = _maximise_log_pl(X, w, is_data, start)
+    maximum = _maximise_bounded(X, w, is_data, start, _upper_bounds(len(active), n_trend, gamma_max))
+    status = _bound_status(status, active[maximum.at_bound] - n_trend, gamma_max)
+    estimated = active[~maximum.at_bound]
     vcov_hessian = _inverse_or_nan(maximum.information, "Fisher information")
-    vcov = _sandwich_vcov(pattern, interaction, maximum.theta, design[: pattern.n][:, active], fitted[: pattern.n],
-                          active, n_trend, pair_distance)
+    vcov = _sandwich_vcov(pattern, interaction, maximum.theta, design[: pattern.n][:, estimated], fitted[: pattern.n],
+                          active, ~maximum.at_bound, n_trend, pair_distance)
 
-    active_names = [names[i] for i in active]
+    estimated_names = [names[i] for i in estimated]
     return PPMFit(
-        model=_fitted_model(interaction, maximum.theta, active, status, n_trend),
-        coefficients=_coefficient_table(names, maximum.theta, active, status, vcov, vcov_hessian, n_trend),
-        vcov=pd.DataFrame(vcov, index=active_names, columns=active_names),
-        vcov_hessian=pd.DataFrame(vcov_hessian, index=active_names, columns=active_names),
+        model=_fitted_model(interaction, maximum.theta, active, status, n_trend, gamma_max),
+        coefficients=_coefficient_table(names, maximum.theta, active, estimated, status, vcov, vcov_hessian, n_trend),
+        vcov=pd.DataFrame(vcov, index=estimated_names, columns=estimated_names),
+        vcov_hessian=pd.DataFrame(vcov_hessian, index=estimated_names, columns=estimated_names),
         log_pl=maximum.log_pl,
         quadrature=quadrature,
         correction=correction,
         rbord=float(rbord),
         n_fitted=int(fitted.sum()),
         iterations=maximum.iterations,
+        gamma_max=gamma_max,
     )
+
+
+def _bound_status(status, at_bound, gamma_max):
+    """Interaction terms held at gamma_max, and unidentifiable ones capped by gamma_max < 1."""
+    status = status.copy()
+    status[at_bound] = GAMMA_MAX
+    if gamma_max is not None and gamma_max < 1:
+        status[status == NOT_IDENTIFIABLE] = NOT_IDENTIFIABLE_CAPPED
+    return status
 
 
 def _warn_degenerate(term_names, status) -> None:
@@ -764,27 +932,31 @@ def _shell_pairs(interaction: MultiStraussHard, points: np.ndarray, marks: np.nd
     return i[in_shell], j[in_shell]
 
 
-def _sandwich_vcov(pattern, interaction, theta, data_design, fitted_data, active, n_trend,
+def _sandwich_vcov(pattern, interaction, theta, data_design, fitted_data, active, free, n_trend,
                    pair_distance=None) -> np.ndarray:
     """Coeurjolly and Rubak's (2013) variance A1^-1 (A1 + A2 + A3) A1^-1, as spatstat's vcov.
 
     A1 = sum over fitted data points of s_i s_i^T. For ordered pairs (i, j) of fitted data
     points in the shell of term c, removing j lowers s_i by the unit vector e_c and scales
     lambda(x_i) by 1/gamma_c: A2 adds (1/gamma_c - 1) (s_i - e_c)(s_j - e_c)^T and A3 adds
-    e_c e_c^T.
+    e_c e_c^T. ``theta`` is over the ``active`` coefficients, ``free`` marks those estimated
+    (not held at gamma_max), the columns of ``data_design``: a term at its bound is an offset,
+    whose pairs still scale lambda (e_c = 0 for them, and they add nothing to A3).
     """
+    n_free = int(free.sum())
     A1 = data_design[fitted_data].T @ data_design[fitted_data]
     i, j = _shell_pairs(interaction, pattern.points, pattern.marks, pair_distance)
     term = _pair_columns(interaction.n_types)[pattern.marks[i], pattern.marks[j]]
-    parameter = np.full(n_trend + len(_pairs(interaction.n_types)), -1)
-    parameter[active] = np.arange(len(active))
-    column = parameter[n_trend + term]
-    keep = fitted_data[i] & fitted_data[j] & (column >= 0)
-    i, j, column = i[keep], j[keep], column[keep]
-    unit = np.eye(len(active))[column]
-    pair_weight = np.expm1(-theta[column])  # 1/gamma - 1
+    position = np.full(n_trend + len(_pairs(interaction.n_types)), -1)
+    position[active] = np.arange(len(active))
+    index = position[n_trend + term]
+    keep = fitted_data[i] & fitted_data[j] & (index >= 0)
+    i, j, index = i[keep], j[keep], index[keep]
+    column = np.where(free, np.cumsum(free) - 1, -1)[index]  # -1 for terms at their bound
+    unit = np.eye(n_free + 1)[column][:, :n_free]  # row -1 of the identity sliced: e_c = 0
+    pair_weight = np.expm1(-theta[index])  # 1/gamma - 1
     A2 = ((data_design[i] - unit) * pair_weight[:, None]).T @ (data_design[j] - unit)
-    A3 = np.diag(np.bincount(column, minlength=len(active)).astype(np.float64))
+    A3 = np.diag(np.bincount(column[column >= 0], minlength=n_free).astype(np.float64))
     sigma = A1 + A2 + A3
     sigma = (sigma + sigma.T) / 2
     inverse = _inverse_or_nan(A1, "sandwich's A1")
@@ -803,26 +975,29 @@ def _inverse_or_nan(matrix: np.ndarray, what: str) -> np.ndarray:
 # ---------------------------------------------------------------------------- results
 
 
-def _fitted_model(interaction, theta, active, status, n_trend) -> MultiStraussHard:
+def _fitted_model(interaction, theta, active, status, n_trend, gamma_max=None) -> MultiStraussHard:
     m = interaction.n_types
     full = np.zeros(n_trend + len(status))
     full[active] = theta
     log_beta = full[0] + np.concatenate([[0.0], full[1:n_trend]])
     log_gamma = full[n_trend:].copy()
-    log_gamma[status == "boundary (gamma = 0)"] = -np.inf
-    gamma = np.exp(log_gamma)[_pair_columns(m)]
+    log_gamma[status == GAMMA_ZERO] = -np.inf
+    gamma = np.exp(log_gamma)
+    if gamma_max is not None:
+        gamma[(status == GAMMA_MAX) | (status == NOT_IDENTIFIABLE_CAPPED)] = gamma_max  # exactly, not exp(log)
+    gamma = gamma[_pair_columns(m)]
     return MultiStraussHard(np.exp(log_beta), gamma, interaction.r, interaction.hc, interaction.categories,
                             interaction.closed)
 
 
-def _coefficient_table(names, theta, active, status, vcov, vcov_hessian, n_trend) -> pd.DataFrame:
+def _coefficient_table(names, theta, active, estimated, status, vcov, vcov_hessian, n_trend) -> pd.DataFrame:
     k = len(names)
     estimate, se, se_hessian = np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan)
     estimate[active] = theta
-    se[active] = np.sqrt(np.diag(vcov))
-    se_hessian[active] = np.sqrt(np.diag(vcov_hessian))
+    se[estimated] = np.sqrt(np.diag(vcov))
+    se_hessian[estimated] = np.sqrt(np.diag(vcov_hessian))
     full_status = np.concatenate([["estimated"] * n_trend, status])
-    estimate[full_status == "boundary (gamma = 0)"] = -np.inf
+    estimate[full_status == GAMMA_ZERO] = -np.inf
     return pd.DataFrame({"estimate": estimate, "se": se, "se_hessian": se_hessian, "status": full_status},
                         index=pd.Index(names, name="coefficient"))
 
@@ -912,7 +1087,7 @@ class StraussHardcoreFit:
 
 def fit_strauss_hardcore(pattern: PointPattern, *, hardcore: str = "minimum", r=None, correction: str = "border",
                          quadrature=None, L_correction: str = "isotropic", rmax=None,
-                         rebound: float = 3.0) -> StraussHardcoreFit:
+                         rebound: float = 3.0, gamma_max: float | None = None) -> StraussHardcoreFit:
     """Estimate a multitype Strauss hard-core model as Hurtut et al. (2009), section 3.2.
 
     Step 1: h per category pair (:func:`hardcore_distances`); step 2: r per pair from the
@@ -938,6 +1113,9 @@ def fit_strauss_hardcore(pattern: PointPattern, *, hardcore: str = "minimum", r=
         Largest r examined in step 2.
     rebound : float
         Step 2's rebound height in CSR standard deviations of L.
+    gamma_max : float, optional
+        Upper bound on gamma in step 3 (see :func:`ppm`): None (default) fits gamma freely,
+        1.0 keeps the paper's 0 <= gamma <= 1 (section 3.1).
 
     Returns
     -------
@@ -950,6 +1128,7 @@ def fit_strauss_hardcore(pattern: PointPattern, *, hardcore: str = "minimum", r=
     pattern = _check_pattern(pattern)
     _check_choice(hardcore, HARDCORE_METHODS, "hardcore")
     _check_choice(correction, CORRECTIONS, "correction")
+    gamma_max = _check_gamma_max(gamma_max)
     h = hardcore_distances(pattern, hardcore)
     if r is None:
         selection = interaction_radii(pattern, h, correction=L_correction, rmax=rmax, rebound=rebound)
@@ -960,7 +1139,7 @@ def fit_strauss_hardcore(pattern: PointPattern, *, hardcore: str = "minimum", r=
                                    "r": radii[a, b], "rule": "given", "noise_sd": np.nan,
                                    "rebound_height": np.nan} for a, b in _pairs(pattern.n_types)])
         curves = {}
-    fit = ppm(pattern, radii, h, closed=False, correction=correction, quadrature=quadrature)
+    fit = ppm(pattern, radii, h, closed=False, correction=correction, quadrature=quadrature, gamma_max=gamma_max)
     return StraussHardcoreFit(fit, hardcore, distances, curves)
 
 

@@ -165,7 +165,8 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     i, j : ndarray of int
         Location and pattern indices of every pair within the reach.
     in_shell : ndarray of bool
-        ``hc <= d < r`` for the pair's types (``hc < d <= r`` when ``model.closed``).
+        ``hc <= d < r`` for the pair's types (``hc < d <= r`` when ``model.closed``, ``0 <= d <= r``
+        when closed with ``hc = 0``: coincident points interact).
     inside_core : ndarray of bool
         ``d < hc`` (``d <= hc`` with ``hc > 0`` when ``model.closed``).
     """
@@ -197,8 +198,8 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     if pair_distance is not None:
         d = _object_distances(pair_distance, i, j, d)
     r, hc = model.r[types[i], pattern_marks[j]], model.hc[types[i], pattern_marks[j]]
-    if model.closed:
-        inside_core, in_shell = (d <= hc) & (hc > 0), (d > hc) & (d <= r)
+    if model.closed:  # hc = 0: no hard core, and a pair at distance 0 interacts (spatstat's Strauss, d <= r)
+        inside_core, in_shell = (d <= hc) & (hc > 0), ((d > hc) | (hc == 0)) & (d <= r)
     else:
         inside_core, in_shell = d < hc, (d >= hc) & (d < r)
     return i, j, in_shell, inside_core

@@ -82,6 +82,6 @@ def rMatClust(kappa: float, scale: float, mu: float, window: Window, *, rng=None
 
 
 def _without_duplicates(points: np.ndarray) -> np.ndarray:
-    """Continuous draws coincide with probability 0; drop exact repeats to honour the invariant."""
+    """Continuous draws coincide with probability 0; drop exact repeats (a PointPattern would warn)."""
     _, first = np.unique(points, axis=0, return_index=True)
     return points[np.sort(first)]

@@ -38,7 +38,7 @@ from tqdm.auto import tqdm
 from . import _kernels
 from ._kernels import CELL_FULL, DONE, POINTS_FULL, Grid, Interaction, Moves, Proposals, State
 from .models import MultiStraussHard
-from .pattern import PointPattern
+from .pattern import PointPattern, require_distinct
 from .window import Window
 
 __all__ = ["intensity_map_values", "rmh"]
@@ -155,9 +155,9 @@ def rmh(
     ------
     ValueError
         Before any simulation, for: T < 1; p outside [0, 1], q outside (0, 1); bad
-        ``ptypes``; ``fixall`` without ``p = 1``; a start outside the window or with
-        marks out of range, or an empty start in fixed-count mode; ``periodic`` with a
-        non-rectangular window or a reach above half a side; an intensity map that is
+        ``ptypes``; ``fixall`` without ``p = 1``; a start outside the window, with marks
+        out of range or with repeated locations, or an empty start in fixed-count mode;
+        ``periodic`` with a non-rectangular window or a reach above half a side; an intensity map that is
         not a non-empty 2-D array of finite non-negative values with a positive one; an
         unstable model (gamma > 1 without hard cores). Models with gamma < 0 or hc > r,
         and masks without an admissible pixel, are rejected when they are built.
@@ -371,6 +371,7 @@ def _grid(window: Window, reach: float, periodic: bool, expected_points: float) 
 def _check_start_spec(start, setup: _Setup) -> None:
     n_types = setup.model.beta.size
     if isinstance(start, PointPattern):
+        require_distinct(start, "rmh's start pattern")
         inside = setup.window.contains(start.points)
         if not inside.all():
             raise ValueError(f"{np.sum(~inside)} start point(s) lie outside the synthesis window {setup.window}")

@@ -31,8 +31,6 @@ pattern_json <- function(X) {
   out
 }
 
-matrix_json <- function(m) unname(lapply(seq_len(nrow(m)), function(i) unname(m[i, ])))
-
 fit_json <- function(name, data, fit, settings, keep_weights = FALSE) {
   Q <- quad.ppm(fit)
   w <- w.quad(Q)

@@ -12,7 +12,8 @@ suppressPackageStartupMessages({
   library(jsonlite)
 })
 here <- "tests/oracle"
-for (part in c("spatstat_summary.R", "spatstat_ppm.R", "spatstat_rmh.R")) {
+for (part in c("spatstat_summary.R", "spatstat_ppm.R", "spatstat_rmh.R", "spatstat_project.R", "spatstat_gof.R",
+               "spatstat_duplicates.R")) {
   message("running ", part)
   source(file.path(here, part), local = new.env())
 }

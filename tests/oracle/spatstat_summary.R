@@ -17,34 +17,6 @@
 suppressPackageStartupMessages(library(spatstat))
 source("tests/oracle/common.R")
 
-VALUE_DIGITS <- 11
-
-window_json <- function(W) {
-  if (is.rectangle(W)) return(list(type = "rectangle", xrange = exact17(W$xrange), yrange = exact17(W$yrange)))
-  stopifnot(is.polygonal(W))
-  # spatstat: outer boundaries anticlockwise, holes clockwise
-  list(type = "polygon", rings = lapply(W$bdry, function(ring) list(x = exact17(ring$x), y = exact17(ring$y))))
-}
-
-pattern_json <- function(X) {
-  out <- list(x = exact17(X$x), y = exact17(X$y), window = window_json(Window(X)))
-  if (is.multitype(X)) {
-    out$marks <- as.character(marks(X))
-    out$categories <- levels(marks(X))
-  }
-  out
-}
-
-# an fv object as columns; `every` keeps rows 1, 1 + every, ... and always the last one
-# (`extra`: further columns on the same r grid)
-fv_json <- function(f, every = 1, extra = list()) {
-  df <- c(as.list(as.data.frame(f)), extra)
-  rows <- unique(c(seq(1, length(df$r), by = every), length(df$r)))
-  out <- list(every = every, r = exact17(df$r[rows]))
-  for (name in setdiff(names(df), c("r", "theo"))) out[[name]] <- signif(df[[name]][rows], VALUE_DIGITS)
-  out
-}
-
 all_corrections <- c("none", "border", "isotropic", "translate")
 
 # r grids that no pair or boundary distance of the gridded data sets hits exactly
@@ -80,7 +52,7 @@ summary_cases <- function() {
     K <- Kest(X, correction = all_corrections)
     rmax <- max(K$r)
     out[[name]] <- list(
-      pattern = pattern_json(X),
+      pattern = exact_pattern_json(X),
       Kest = fv_json(K, every = if (name == "cells") 1 else 2),
       Lest_offgrid = fv_json(Lest(X, r = offgrid_r(rmax), correction = all_corrections)),
       Kest_uneven = fv_json(Kest(X, r = uneven_r(rmax), correction = all_corrections)),
@@ -88,7 +60,7 @@ summary_cases <- function() {
     )
   }
   A <- amacrine
-  cross <- list(pattern = pattern_json(A))
+  cross <- list(pattern = exact_pattern_json(A))
   for (pair in list(c("on", "off"), c("off", "on"), c("on", "on"))) {
     key <- paste(pair, collapse = "_")
     K <- Kcross(A, pair[1], pair[2], correction = all_corrections)
@@ -103,7 +75,7 @@ summary_cases <- function() {
   # (here r = 0.125 and r = rmax = 0.25).
   g <- expand.grid(i = 0:7, j = 0:7)
   X <- ppp(g$i * 0.125 + 0.1 + 0.0625, g$j * 0.125 + 0.2 + 0.0625, window = owin(c(0.1, 1.1), c(0.2, 1.2)))
-  out$lattice <- list(pattern = pattern_json(X), Kest = fv_json(Kest(X, correction = all_corrections), every = 2))
+  out$lattice <- list(pattern = exact_pattern_json(X), Kest = fv_json(Kest(X, correction = all_corrections), every = 2))
   out
 }
 
@@ -120,7 +92,7 @@ polygon_case <- function() {
   Xb <- X[marks(X) == "b"]
   g <- pcf(Y)
   list(
-    pattern = pattern_json(X),
+    pattern = exact_pattern_json(X),
     Kest = fv_json(K, every = 2, extra = list(
       trans_exact = exact_trans_K(closepairs(Y, max(r)), r, W, npoints(Y) * (npoints(Y) - 1))
     )),
