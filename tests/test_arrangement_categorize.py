@@ -1,4 +1,4 @@
-"""paperlib.arrangement.categorize: Hurtut 2009 section 2.2 categorization and the adjusted Rand index."""
+"""paperlib.arrangement.categorize: the recursive default, Hurtut 2009's recipe, and the adjusted Rand index."""
 
 import numpy as np
 import pytest
@@ -36,13 +36,13 @@ def three_kinds(seed=1):
     return [elements[i] for i in order], truth[order]
 
 
-# --------------------------------------------------------------------------- categorization
+# --------------------------------------------------------------------------- the paper's recipe (method="paper")
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_small_o_large_o_large_x_give_three_categories(seed):
     elements, truth = three_kinds(seed)
-    result = categorize(elements, REFERENCE_AREA, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", rng=0)
     assert isinstance(result, Categorization)
     assert adjusted_rand_index(result.labels, truth) == 1.0
     assert result.n_categories == 3
@@ -66,7 +66,7 @@ def test_small_o_large_o_large_x_give_three_categories(seed):
 def test_without_the_appearance_stage_the_kinds_would_mix():
     # The same data with no category large enough to split: area alone gives 2 categories.
     elements, truth = three_kinds()
-    result = categorize(elements, REFERENCE_AREA, min_category_size=100, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", min_category_size=100, rng=0)
     assert result.categories == ("area0", "area1")
     assert all(report.status == "too_few" for report in result.area_categories)
     assert adjusted_rand_index(result.labels, truth) < 0.7
@@ -74,7 +74,7 @@ def test_without_the_appearance_stage_the_kinds_would_mix():
 
 def test_single_kind_is_one_category():
     rng = np.random.default_rng(5)
-    result = categorize(placed(X, 1.0, 40, rng), REFERENCE_AREA, rng=0)
+    result = categorize(placed(X, 1.0, 40, rng), REFERENCE_AREA, method="paper", rng=0)
     assert result.categories == ("area0",)
     assert result.counts.tolist() == [40]
     assert (result.labels == 0).all()
@@ -83,7 +83,7 @@ def test_single_kind_is_one_category():
 def test_huge_elements_form_an_outlier_category():
     rng = np.random.default_rng(7)
     elements = placed(O, 0.55, 30, rng) + placed(X, 0.55 * X_SCALE, 30, rng) + placed(O, 4.0, 2, rng)
-    result = categorize(elements, REFERENCE_AREA, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", rng=0)
     assert result.categories == ("area0.shape0", "area0.shape1", "outlier0")
     assert result.members("outlier0").tolist() == [60, 61]
     assert result.features["large"].iloc[60:].all()  # capped at area 1: the last bin
@@ -99,7 +99,7 @@ def test_exact_fit_falls_back_to_the_classical_component():
     rng = np.random.default_rng(3)
     elements = [O.transformed(np.eye(2), rng.uniform(0, 4, 2)) for _ in range(25)]
     elements += [X.transformed(X_SCALE * np.eye(2), rng.uniform(0, 4, 2)) for _ in range(5)]
-    result = categorize(elements, REFERENCE_AREA, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", rng=0)
     (report,) = result.area_categories
     assert report.pca_method == "classical" and report.pca is None and "exact fit" in report.note
     assert result.categories == ("area0.shape0", "area0.outlier0")  # 5 of 30 in one bin: no mode
@@ -110,7 +110,7 @@ def test_exact_fit_falls_back_to_the_classical_component():
 def test_identical_feature_vectors_stay_one_category():
     rng = np.random.default_rng(4)
     elements = [O.transformed(np.eye(2), rng.uniform(0, 4, 2)) for _ in range(12)]
-    result = categorize(elements, REFERENCE_AREA)
+    result = categorize(elements, REFERENCE_AREA, method="paper")
     assert result.categories == ("area0",)
     assert result.area_categories[0].status == "constant"
     assert result.area_categories[0].histogram is None
@@ -119,7 +119,7 @@ def test_identical_feature_vectors_stay_one_category():
 def test_small_area_categories_are_not_split_and_are_reported():
     rng = np.random.default_rng(8)
     elements = placed(O, 1.0, 4, rng) + placed(X, X_SCALE, 4, rng) + placed(O, 0.4, 2, rng)
-    result = categorize(elements, REFERENCE_AREA, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", rng=0)
     assert all(report.status == "too_few" for report in result.area_categories)
     assert result.counts.sum() == 10
     assert set(result.small_categories) == {name for name, count in zip(result.categories, result.counts) if count < 3}
@@ -132,14 +132,14 @@ def test_orientation_across_the_x_axis_is_one_category():
     lying = placed(X, X_SCALE, 30, rng, rotation=0.1, base_angle=np.pi / 2)
     upright = placed(O, 1.0, 30, rng, rotation=0.1)
     truth = np.repeat([0, 1], 30)
-    result = categorize(lying + upright, REFERENCE_AREA, rng=0)
+    result = categorize(lying + upright, REFERENCE_AREA, method="paper", rng=0)
     assert adjusted_rand_index(result.labels, truth) == 1.0
     orientation = result.features["orientation"].to_numpy()[:30]
     assert orientation.min() < 0.05 and orientation.max() > 0.45  # really straddles the wrap
-    circular = categorize(lying + upright, REFERENCE_AREA, orientation="circular", rng=0)
+    circular = categorize(lying + upright, REFERENCE_AREA, method="paper", orientation="circular", rng=0)
     assert circular.parameters["orientation"] == "circular"
     assert adjusted_rand_index(circular.labels, truth) == 1.0
-    linear = categorize(lying + upright, REFERENCE_AREA, orientation="linear", rng=0)
+    linear = categorize(lying + upright, REFERENCE_AREA, method="paper", orientation="linear", rng=0)
     assert adjusted_rand_index(linear.labels, truth) < 1.0  # the paper's feature cuts the 'x' in two
 
 
@@ -154,8 +154,8 @@ def test_unwrapped_orientation():
 
 def test_deterministic_for_a_seed():
     elements, _ = three_kinds(4)
-    first = categorize(elements, REFERENCE_AREA, rng=11)
-    second = categorize(elements, REFERENCE_AREA, rng=np.random.default_rng(11))
+    first = categorize(elements, REFERENCE_AREA, method="paper", rng=11)
+    second = categorize(elements, REFERENCE_AREA, method="paper", rng=np.random.default_rng(11))
     assert np.array_equal(first.labels, second.labels)
     for a, b in zip(first.area_categories, second.area_categories):
         assert (a.component is None) == (b.component is None)
@@ -166,7 +166,7 @@ def test_deterministic_for_a_seed():
 
 def test_data_range_histograms_are_offered():
     elements, truth = three_kinds(1)
-    result = categorize(elements, REFERENCE_AREA, histogram_range="data", rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", histogram_range="data", rng=0)
     assert result.parameters["histogram_range"] == "data"
     edges = result.area_histogram.edges
     assert edges[0] == pytest.approx(result.features["area"].min())
@@ -175,7 +175,7 @@ def test_data_range_histograms_are_offered():
 
 def test_report_is_read_only():
     elements, _ = three_kinds(1)
-    result = categorize(elements, REFERENCE_AREA, rng=0)
+    result = categorize(elements, REFERENCE_AREA, method="paper", rng=0)
     with pytest.raises(ValueError):
         result.labels[0] = 5
     with pytest.raises(ValueError):
@@ -198,6 +198,7 @@ def test_report_is_read_only():
         (([O], REFERENCE_AREA), {"min_category_size": 2}, ValueError),
         (([O], REFERENCE_AREA), {"histogram_range": "auto"}, ValueError),
         (([O], REFERENCE_AREA), {"orientation": "polar"}, ValueError),
+        (([O], REFERENCE_AREA), {"method": "kmeans"}, ValueError),
     ],
 )
 def test_bad_input(args, kwargs, error):
@@ -247,3 +248,85 @@ def test_ari_trivial_partitions():
 def test_ari_bad_input(a, b):
     with pytest.raises(ValueError):
         adjusted_rand_index(a, b)
+
+
+# --------------------------------------------------------------------------- the recursive default
+
+
+def drawn(types, seed):
+    from paperlib.datasets import drawn_glyph_exemplar
+
+    return drawn_glyph_exemplar(types, rng=seed)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_default_is_recursive_and_recovers_drawn_types(seed):
+    # Rings, crosses and hashes of one size drawn by a hand (size +-15%, any rotation, warp, tremor).
+    exemplar = drawn((("o", 0.05, 30), ("x", 0.05, 25), ("#", 0.05, 15)), seed)
+    result = categorize(exemplar.elements, exemplar.window.area)
+    assert result.parameters["method"] == "recursive"
+    assert adjusted_rand_index(result.labels, exemplar.labels) == 1.0
+    assert result.area_categories == ()
+    root = result.splits[0]
+    assert root.name == "all" and root.feature == "crossings" and root.status == "split"
+    assert root.histogram.counts[:5].tolist() == [30, 25, 0, 0, 15]
+    leaves = [split for split in result.splits if split.status != "split"]
+    assert sorted(split.name for split in leaves) == sorted(result.categories)
+    assert sum(split.members.size for split in leaves) == len(exemplar.elements)
+
+
+def test_the_paper_recipe_merges_what_the_default_splits():
+    # Same glyph at two sizes x2.5 apart, below 1.5% of the surface: the paper's 10 linear area bins
+    # (0.5% each) put them in the first three, one MM-mode; the default's log-area bins separate them.
+    exemplar = drawn((("o", 0.03, 40), ("o", 0.075, 30, "O")), 0)
+    paper = categorize(exemplar.elements, exemplar.window.area, method="paper", rng=0)
+    assert paper.area_histogram.counts[:3].sum() == 70 and len(paper.area_histogram.modes) == 1
+    assert adjusted_rand_index(paper.labels, exemplar.labels) < 0.5
+    default = categorize(exemplar.elements, exemplar.window.area)
+    assert default.splits[0].feature == "area"
+    assert adjusted_rand_index(default.labels, exemplar.labels) == 1.0
+
+
+def test_one_crossing_apart_is_split_one_extremity_apart_is_not():
+    # '0' and '8' differ by one crossing (Fig. 3 top row): counted exactly, split. A hand that adds a
+    # corner to a few elements (0 or 1 extremity) does not split them: extremities use MM-modes.
+    exemplar = drawn((("0", 0.06, 35), ("8", 0.06, 35)), 0)
+    result = categorize(exemplar.elements, exemplar.window.area)
+    assert result.splits[0].feature == "crossings"
+    assert adjusted_rand_index(result.labels, exemplar.labels) == 1.0
+    assert set(result.features["extremities_raw"]) == {0, 1}
+
+
+@pytest.mark.parametrize("char", ["o", "x", "v"])
+def test_single_drawn_type_stays_one_category(char):
+    for seed in range(3):
+        exemplar = drawn(((char, 0.02, 100),), seed)
+        result = categorize(exemplar.elements, exemplar.window.area)
+        assert result.categories == ("all",)
+        assert result.splits[0].status == "one_mode"
+
+
+def test_isolated_large_elements_are_an_outlier_group():
+    rng = np.random.default_rng(7)
+    elements = placed(O, 0.55, 30, rng) + placed(X, 0.55 * X_SCALE, 30, rng) + placed(O, 4.0, 2, rng)
+    result = categorize(elements, REFERENCE_AREA)
+    assert result.members("area_outlier0").tolist() == [60, 61]
+    assert result.is_outlier.tolist() == [False, False, True]
+    assert "area_outlier0" in result.small_categories
+
+
+def test_groups_smaller_than_the_minimum_are_not_split():
+    exemplar = drawn((("o", 0.05, 4), ("x", 0.05, 4)), 0)
+    result = categorize(exemplar.elements, exemplar.window.area)
+    assert result.categories == ("all",) and result.splits[0].status == "too_few"
+
+
+def test_recursive_is_deterministic_and_read_only():
+    exemplar = drawn((("o", 0.05, 20), ("v", 0.05, 20)), 3)
+    first = categorize(exemplar.elements, exemplar.window.area, rng=1)
+    second = categorize(exemplar.elements, exemplar.window.area, rng=2)  # draws nothing: rng unused
+    assert first.labels.tobytes() == second.labels.tobytes()
+    with pytest.raises(ValueError):
+        first.splits[0].members[0] = 1
+    with pytest.raises(ValueError):
+        first.splits[0].histogram.counts[0] = 1

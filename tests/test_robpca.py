@@ -55,6 +55,11 @@ def flagged(fit: RobustPCA) -> set[int]:
     return {int(i) for i in np.flatnonzero(fit.is_outlier)}
 
 
+def rrcov_flagged(fit: dict) -> set[int]:
+    """rrcov's flagged rows (jsonlite unboxes a single row to a number)."""
+    return {int(i) for i in np.atleast_1d(fit["outliers"])}
+
+
 # --- the stages of ROBPCA against rrcov and robustbase (deterministic: agreement to rounding) ----
 
 
@@ -136,7 +141,7 @@ def rrcov_spread(name: str, k: int) -> dict:
         first.append(angle_degrees(loadings(permuted, k)[:, 0], loadings(reference, k)[:, 0]))
         subspace.append(subspace_angle_degrees(loadings(permuted, k), loadings(reference, k)))
         eigenvalue.append(np.max(np.abs(np.array(permuted["eigenvalues"]) / reference["eigenvalues"] - 1)))
-        flags.append(len(set(permuted["outliers"]) ^ set(reference["outliers"])))
+        flags.append(len(rrcov_flagged(permuted) ^ rrcov_flagged(reference)))
     return {"first": max(first), "subspace": max(subspace), "eigenvalue": max(eigenvalue), "flags": max(flags)}
 
 
@@ -160,6 +165,32 @@ def test_larger_data_sets_agree_with_rrcov_within_its_own_spread(name, k):
         relative = np.max(np.abs(ours.eigenvalues / reference["eigenvalues"] - 1))
         assert relative <= spread["eigenvalue"] + EXACT
         assert len(flagged(ours) ^ set(reference["outliers"])) <= spread["flags"]
+        assert ours.cutoffs.score == pytest.approx(reference["cutoff_sd"], rel=EXACT)
+
+
+DRAWN = sorted(name for name in DATA if name.startswith("drawn_"))
+
+
+@pytest.mark.parametrize("name", DRAWN)
+@pytest.mark.parametrize("k", [1, 2])
+def test_drawn_glyph_features_agree_with_rrcov_within_its_own_spread(name, k):
+    # Hurtut's appearance features of hand-drawn glyph arrangements (categorization_cases("main", 0)):
+    # non-identical elements of 1 to 5 types, the matrices categorize(method="paper") hands to ROBPCA.
+    # The components and eigenvalues must lie within rrcov's own spread over row orders; the flagged
+    # rows differ from rrcov's reference by no more than rrcov's own answers differ among themselves
+    # (the borderline rows move with the directions: up to 5 rows for drawn_crossings_top_row, k = 1).
+    reference = rrcov_fits(name, k)[0]
+    answers = [reference] + [p for p in ORACLE["permutations"] if p["data"] == name and p["k"] == k]
+    spread = rrcov_spread(name, k)
+    flag_spread = max(len(rrcov_flagged(a) ^ rrcov_flagged(b)) for a in answers for b in answers)
+    reference_loadings = loadings(reference, k)
+    for seed in range(5):
+        ours = robust_pca(DATA[name], k, rng=seed)
+        assert ours.subset_size == reference["h"]
+        assert angle_degrees(ours.components[:, 0], reference_loadings[:, 0]) <= spread["first"] + 1e-6
+        assert subspace_angle_degrees(ours.components, reference_loadings) <= spread["subspace"] + 1e-6
+        assert np.max(np.abs(ours.eigenvalues / reference["eigenvalues"] - 1)) <= spread["eigenvalue"] + 1e-8
+        assert len(flagged(ours) ^ rrcov_flagged(reference)) <= flag_spread
         assert ours.cutoffs.score == pytest.approx(reference["cutoff_sd"], rel=EXACT)
 
 

@@ -108,12 +108,12 @@ def test_same_seed_same_synthesis_different_seed_different(explorer):
 
 
 def test_categorize_toggle_changes_labels_and_caches_both_fits(explorer):
-    assert explorer.arrangement.categories == ("area0",)  # categorize's names
+    assert explorer.arrangement.categories == ("all",)  # categorize's name of an undivided drawing
     explorer.labels.value = "truth"
     assert explorer.arrangement.categories == explorer.drawing.truth_categories == ("o",)
     assert "(truth)" in explorer.summary
     explorer.labels.value = "categorize"
-    assert explorer.arrangement.categories == ("area0",)
+    assert explorer.arrangement.categories == ("all",)
     assert explorer.calls["fit"] == 2 and explorer.calls["categorize"] == 1
 
 

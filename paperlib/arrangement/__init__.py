@@ -3,8 +3,10 @@
 Built on :mod:`paperlib.geometry`, :mod:`paperlib.acontrario` and :mod:`paperlib.pointprocess`:
 
 - :func:`element_features`: the five appearance features of section 2.1;
-- :func:`categorize`: section 2.2, maximal meaningful modes of the area histogram, then of the
-  first robust principal component (:func:`robust_pca`, ROBPCA) of the other features;
+- :func:`categorize`: section 2.2, by default a recursive a contrario splitting on one feature's
+  modes at a time (area first), or with ``method="paper"`` the paper's recipe: maximal meaningful
+  modes of the area histogram, then of the first robust principal component (:func:`robust_pca`,
+  ROBPCA) of the other features;
 - :func:`fit` and :func:`synthesize`: the multitype Strauss hard-core model of section 3 fitted
   on element positions, simulated by Metropolis-Hastings in any window (with a density brush),
   reference elements pasted per category (section 3.3); :func:`render` and ``Arrangement.to_svg``;
@@ -14,13 +16,17 @@ Built on :mod:`paperlib.geometry`, :mod:`paperlib.acontrario` and :mod:`paperlib
 
 from .categorize import (
     DEFAULT_BINS,
+    METHODS,
     MIN_FIT_SIZE,
     MIN_SPLIT_SIZE,
+    RECURSIVE_FEATURES,
     AreaCategory,
     Categorization,
     FeatureHistogram,
+    Split,
     adjusted_rand_index,
     categorize,
+    recursive_feature_values,
     unwrapped_orientation,
 )
 from .features import (
@@ -42,7 +48,7 @@ from .synthesis import INTERACTIONS, Arrangement, ArrangementModel, element_posi
 
 __all__ = [
     "AREA_FRACTION", "Arrangement", "BOX_DISTANCES", "INTERACTIONS", "ArrangementModel", "AreaCategory", "COUNT_SCALE", "Categorization",
-    "DEFAULT_BINS", "DistanceCutoffs", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
+    "DEFAULT_BINS", "DistanceCutoffs", "METHODS", "RECURSIVE_FEATURES", "Split", "recursive_feature_values", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
     "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "box_distance_matrix", "categorize", "crossing_points",
     "element_features", "element_positions", "extremity_points", "fit", "normalized_area", "normalized_count",
     "normalized_elongation", "normalized_orientation", "render", "robust_pca", "subset_size", "synthesize",

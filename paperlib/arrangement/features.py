@@ -79,7 +79,9 @@ apart, pass through each other: one of them splits the neighbourhood of the poin
 the other has an arm on each side. The test works on the arms at the point, so a crossing
 through a vertex counts as one in the middle of two segments. Not crossings: T-junctions (an
 end on a curve), joins and junctions of ends, tangential touches, collinear overlaps, and loops
-shorter than ``W``, which are part of a bend. Crossings closer than ``t`` are one point: the
+shorter than ``W``, which are part of a bend, and points closer than ``t`` along a curve to the end
+of an open curve: an end that overshoots another curve by less than the pen's width is a
+T-junction drawn by a hand, as one that stops short of it is. Crossings closer than ``t`` are one point: the
 three strokes of '*' through one point make one crossing.
 
 Distances and turns within a relative ``1e-9`` of a threshold count as beyond or within it
@@ -748,6 +750,7 @@ def _crossings(curves: _Curves):
     t, u, proper = _line_parameters(curves.frame, first, second)
     first, second, t, u = first[proper], second[proper], t[proper], u[proper]
     crossing = _arms_alternate(curves, first, t, second, u) & ~_same_bend(curves, first, t, second, u)
+    crossing &= ~(_near_an_end(curves, first, t) | _near_an_end(curves, second, u))
     first, t = first[crossing], t[crossing]
     element = curves.stack.vertex_element[first]
     layout = curves.layout[first] + t[:, None] * (curves.layout[first + 1] - curves.layout[first])
@@ -826,6 +829,19 @@ def _same_bend(curves: _Curves, first, t, second, u) -> np.ndarray:
     length = curves.chain_length[chain_a]
     gap = np.where(curves.chain_closed[chain_a], np.minimum(gap, length - gap), gap)
     return (chain_a == chain_b) & _closer(gap, curves.window[curves.chain_element[chain_a]])
+
+
+def _near_an_end(curves: _Curves, segment_start, t) -> np.ndarray:
+    """True where the point is closer than the join tolerance, along its curve, to an open curve's end.
+
+    An end that overshoots a curve by less than the tolerance (the pen's width at least) is an end
+    on that curve, a T-junction inked over, as an end that stops short of it by as much is.
+    """
+    chain = curves.entry_chain[curves.vertex_entry[segment_start]]
+    arc = _arc_at(curves, segment_start, t)
+    tolerance = curves.tolerance[curves.chain_element[chain]]
+    near = _closer(arc, tolerance) | _closer(curves.chain_length[chain] - arc, tolerance)
+    return ~curves.chain_closed[chain] & near
 
 
 def _arc_at(curves: _Curves, segment_start, t) -> np.ndarray:

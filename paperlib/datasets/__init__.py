@@ -13,6 +13,9 @@ licence and size:
   matplotlib (shapes with large-scale structure).
 - :mod:`.exemplars`: documented, seeded generators of element arrangements made of Hershey
   glyphs placed by point processes, with their ground truth (Hurtut 2009's exemplars).
+- :mod:`.drawn_glyphs`: documented, seeded generators of hand-drawn-like arrangements of several
+  glyph types (size, rotation and a hand's warp and tremor within each type) with truth labels,
+  and the test matrix of categorizations (Hurtut 2009, section 2, Figs. 3 and 9).
 - :mod:`.sketches`: documented, seeded generators of synthetic leaf outlines (Simhon 2001, Fig. 5) and
   hand-drawn-like sketches (Figs. 3, 4, 6).
 - :mod:`.strokepatterns`: documented, seeded generators of synthetic reference stroke patterns with
@@ -23,6 +26,7 @@ licence and size:
 
 from .coastlines import GshhsPolygon, coastlines, gshhs_polygons, gshhs_resolutions
 from .countries import country_english_names, country_names, country_outline
+from .drawn_glyphs import GlyphType, categorization_cases, drawn_glyph, drawn_glyph_exemplar
 from .exemplars import (
     Exemplar,
     amacrine_exemplar,
@@ -59,13 +63,17 @@ __all__ = [
     "MAX_TREMOR",
     "MAX_WOBBLE",
     "Exemplar",
+    "GlyphType",
     "GshhsPolygon",
     "amacrine_exemplar",
     "big_small_exemplar",
+    "categorization_cases",
     "coastlines",
     "country_english_names",
     "country_names",
     "country_outline",
+    "drawn_glyph",
+    "drawn_glyph_exemplar",
     "drawn_hatching_exemplar",
     "glyph_outline",
     "glyph_outlines",

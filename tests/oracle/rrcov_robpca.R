@@ -12,6 +12,11 @@
 #                             rrcov's outlyingness uses all 105 pairs and is deterministic)
 #                   hbk       robustbase's Hawkins-Bradu-Kass data, all 4 columns (14 outliers)
 #                   starsCYG  robustbase's star cluster CYG OB1, p = 2 (4 giants + a few others)
+#                   drawn_*   Hurtut's appearance features (elongation, unwrapped orientation,
+#                             extremities, crossings, normalised) of hand-drawn glyph arrangements
+#                             from paperlib.datasets.categorization_cases("main", rng=0): the
+#                             matrices categorize(method = "paper") hands to ROBPCA, non-identical
+#                             elements of 1 to 5 types (computed by the project's Python, read here)
 #   fits          PcaHubert(X, k, alpha = 0.75, mcd = FALSE) -- the full ROBPCA algorithm; with the
 #                 default mcd = TRUE and n >= 5 p rrcov would instead take the PCA of one MCD --
 #                 for k = 1, 2 and R seeds 1..5 (the MCD in the k-dimensional subspace draws its
@@ -33,7 +38,6 @@ suppressPackageStartupMessages(library(rrcov))
 source("tests/oracle/common.R")
 
 exact_rows <- function(m) unname(lapply(seq_len(nrow(m)), function(i) exact17(unname(m[i, ]))))
-matrix_json <- function(m) unname(lapply(seq_len(nrow(m)), function(i) unname(m[i, ])))
 
 planted_data <- function(n_regular, n_outliers, seed) {
   set.seed(seed)
@@ -46,6 +50,28 @@ planted_data <- function(n_regular, n_outliers, seed) {
   list(X = X, true_direction = rotation[, 1], outliers = n_regular + seq_len(n_outliers) - 1)
 }
 
+drawn_feature_matrices <- function() {
+  # The feature matrices come from the project's own generator and feature code (Python); R only
+  # fits them. Printed with repr (shortest round trip); the doubles R parses are stored with exact17.
+  code <- paste(
+    "import json",
+    "from paperlib.datasets import categorization_cases",
+    "from paperlib.arrangement import element_features",
+    "from paperlib.arrangement.categorize import _appearance_matrix, unwrapped_orientation",
+    "cases = categorization_cases('main', rng=0)",
+    "out = {}",
+    "for name in ('topology_2', 'crossings_top_row', 'mixed_5', 'control_single'):",
+    "    ex = cases[name][1]",
+    "    X, columns, _, _ = _appearance_matrix(element_features(ex.elements, ex.window.area), False)",
+    "    X[:, 1] = unwrapped_orientation(X[:, 1])",
+    "    out['drawn_' + name] = [[repr(float(v)) for v in row] for row in X]",
+    "print(json.dumps(out))",
+    sep = "\n"
+  )
+  rows <- jsonlite::fromJSON(paste(system2(".venv/bin/python", c("-c", shQuote(code)), stdout = TRUE), collapse = ""))
+  lapply(rows, function(m) list(X = matrix(as.numeric(m), nrow = nrow(m))))
+}
+
 data(hbk, package = "robustbase")
 data(starsCYG, package = "robustbase")
 planted <- planted_data(60, 8, 20090801)
@@ -56,6 +82,7 @@ datasets <- list(
   hbk = list(X = as.matrix(hbk)),
   starsCYG = list(X = as.matrix(starsCYG))
 )
+datasets <- c(datasets, drawn_feature_matrices())
 
 fit_json <- function(name, X, k, seed) {
   set.seed(seed)
@@ -85,7 +112,7 @@ permutation_json <- function(name, X, k, i) {
        outliers = sort(order[fit$outliers + 1]) - 1)
 }
 permutations <- list()
-for (name in c("planted", "hbk", "starsCYG")) {
+for (name in c("planted", "hbk", "starsCYG", grep("^drawn_", names(datasets), value = TRUE))) {
   X <- datasets[[name]]$X
   for (k in 1:2) for (i in 1:20) permutations[[length(permutations) + 1]] <- permutation_json(name, X, k, i)
 }
