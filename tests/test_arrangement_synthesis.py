@@ -3,6 +3,7 @@
 import warnings
 
 import numpy as np
+import pandas as pd
 import pytest
 from scipy.spatial.distance import cdist
 from shapely.geometry import Point
@@ -17,7 +18,7 @@ from paperlib.arrangement.synthesis import (
 )
 from paperlib.datasets import hershey_glyph
 from paperlib.geometry import oriented_bounding_box, read_svg
-from paperlib.pointprocess import MultiStraussHard, Poisson, Window, rmh
+from paperlib.pointprocess import MultiStraussHard, Poisson, Window, fit_strauss_hardcore, rmh
 
 EXEMPLAR_WINDOW = Window.rectangle((0, 16), (0, 16))
 # 'o' regular (Strauss gamma 0.2 within r = 1), 'x' random, o-x independent; hard cores only.
@@ -84,11 +85,34 @@ def test_fit_recovers_model(exemplar, model):
     # gamma: MPLE is asymptotically normal; on the log scale the delta-method SE is
     # se / gamma. Bound: 3 SE around the truth (the sandwich SE ignores h's estimation,
     # so a 2-SE bound would be too tight; 8 seeds tried: |z| <= 3.2).
+    # The pipeline fits the paper's model, gamma <= 1: a gamma on that bound has no standard
+    # error (the constrained maximum is not a stationary point) and must then be one whose true
+    # value is 1.
     natural = model.fit.fit.natural.loc["gamma"]
-    z = (np.log(natural.estimate) - np.log([0.2, 1.0, 1.0])) / (natural.se / natural.estimate)
+    truth = pd.Series([0.2, 1.0, 1.0], index=natural.index)
+    assert (natural.estimate <= 1.0).all(), natural.estimate
+    at_bound = natural.estimate == 1.0
+    assert (truth[at_bound] == 1.0).all(), natural.estimate
+    inside = ~at_bound
+    z = (np.log(natural.estimate[inside]) - np.log(truth[inside])) / (natural.se[inside] / natural.estimate[inside])
     assert (np.abs(z.to_numpy()) <= 3).all(), z
     # 'o' is significantly regular: its upper 2-SE bound stays below 1
     assert natural.estimate["o-o"] + 2 * natural.se["o-o"] < 1
+
+
+def test_fit_bounds_gamma_by_one_unless_asked_not_to(exemplar):
+    # The paper's model (section 3.2.2: gamma in [0, 1]) by default; gamma_max=None is the
+    # engine's unconstrained pseudolikelihood fit, unchanged. With the true r, the random
+    # crosses get an unconstrained gamma of 1.25 on this exemplar.
+    _, elements, labels = exemplar
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        bounded = fit(elements, labels, EXEMPLAR_WINDOW, r=TRUE_MODEL.r)
+        free = fit(elements, labels, EXEMPLAR_WINDOW, r=TRUE_MODEL.r, gamma_max=None)
+        engine = fit_strauss_hardcore(free.pattern, r=TRUE_MODEL.r)
+    assert (bounded.model.gamma <= 1.0).all()
+    assert (free.model.gamma > 1.0).any(), free.model.gamma
+    np.testing.assert_array_equal(free.model.gamma, engine.model.gamma)
 
 
 def test_references_are_centred(model):

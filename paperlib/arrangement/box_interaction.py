@@ -241,7 +241,7 @@ def _quadrature_corners(scheme, pattern: PointPattern, corners: np.ndarray, refe
 
 
 def fit_box_model(pattern: PointPattern, corners, reference_corners, *, distance: str = "hausdorff", rmax=None,
-                  rebound: float = REBOUND, nd=None) -> BoxInteractionFit:
+                  rebound: float = REBOUND, nd=None, gamma_max: float | None = 1.0) -> BoxInteractionFit:
     """Fit the multitype Strauss hard-core model on box distances (Hurtut 2009, 3.2 and 4.3).
 
     Parameters
@@ -260,6 +260,9 @@ def fit_box_model(pattern: PointPattern, corners, reference_corners, *, distance
         Rebound height, in CSR standard deviations, that confirms a minimum of L.
     nd : int, optional
         Quadrature grid side (default :func:`paperlib.pointprocess.fine_nd`, at most ``MAX_ND``).
+    gamma_max : float or None
+        Upper bound of gamma (default 1, the paper's model; ``None``: unconstrained), as for
+        :func:`paperlib.pointprocess.ppm`.
 
     Returns
     -------
@@ -282,7 +285,7 @@ def fit_box_model(pattern: PointPattern, corners, reference_corners, *, distance
     cutoff = float(radii.max())
     pair_distance = PairDistance(lambda i, j: _paired_distances(kind, boxes[i], corners[j], cutoff),
                                  _padding(kind, corners, reference_corners))
-    fitted = ppm(pattern, radii, h, closed=False, quadrature=scheme, pair_distance=pair_distance)
+    fitted = ppm(pattern, radii, h, closed=False, quadrature=scheme, pair_distance=pair_distance, gamma_max=gamma_max)
     return BoxInteractionFit(fitted, distance, table, curves)
 
 

@@ -193,7 +193,8 @@ def _category_marks(labels, n: int, categories) -> tuple[np.ndarray, tuple]:
     return marks, categories
 
 
-def fit(elements, labels, window, *, categories=None, interaction: str = "centre", **fit_options) -> ArrangementModel:
+def fit(elements, labels, window, *, categories=None, interaction: str = "centre", gamma_max: float | None = 1.0,
+        **fit_options) -> ArrangementModel:
     """Fit the arrangement model of Hurtut 2009, section 3.2, to categorized elements.
 
     Parameters
@@ -213,6 +214,12 @@ def fit(elements, labels, window, *, categories=None, interaction: str = "centre
         oriented bounding boxes, the remedy section 4.3 proposes for elongated elements;
         ``"box_gap"``: on the distance between the boxes, 0 when they intersect (ours; see
         :mod:`paperlib.arrangement.box_interaction` for why).
+    gamma_max : float or None
+        Upper bound of every interaction strength. The default 1.0 is the paper's model
+        (section 3.2.2: gamma is "a scalar in range [0, 1]", repulsion or none); an
+        unconstrained pseudolikelihood fit can give gamma > 1 on a small or clustered
+        exemplar (attraction in a thin shell, which the paper's model excludes). ``None``
+        fits gamma without a bound (the point-process engine's default).
     **fit_options
         ``"centre"``: passed to :func:`paperlib.pointprocess.fit_strauss_hardcore`
         (``hardcore``, ``r``, ``correction``, ``quadrature``, ``L_correction``, ``rmax``,
@@ -254,12 +261,12 @@ def fit(elements, labels, window, *, categories=None, interaction: str = "centre
     members = [np.flatnonzero(marks == m) for m in range(len(categories))]
     references = tuple(tuple(_translated(elements[i], -positions[i]) for i in ids) for ids in members)
     if interaction == "centre":
-        estimate = fit_strauss_hardcore(pattern, **fit_options)
+        estimate = fit_strauss_hardcore(pattern, gamma_max=gamma_max, **fit_options)
         return ArrangementModel(estimate.model, estimate, references, categories, window, pattern)
     corners = oriented_bounding_boxes(elements).corners()
     reference_corners = tuple(corners[ids] - positions[ids, None, :] for ids in members)
     estimate = fit_box_model(pattern, corners, reference_corners, distance=interaction.removeprefix("box_"),
-                             **fit_options)
+                             gamma_max=gamma_max, **fit_options)
     return ArrangementModel(estimate.model, estimate, references, categories, window, pattern, interaction,
                             reference_corners)
 
