@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from numbers import Integral
 
 import numpy as np
@@ -41,7 +42,11 @@ __all__ += [
     "check_edges",
     "check_flag",
     "check_rng",
+    "data_frame",
+    "file_path",
     "finite_array",
+    "instance_of",
+    "integer_array",
     "integer_in_range",
     "load_json",
     "budget",
@@ -132,19 +137,51 @@ def check_rng(rng, name: str = "rng"):
     return int(rng)
 
 
-def finite_array(values, name: str, *, ndim: int | None = None, min_size: int = 0) -> np.ndarray:
-    """``values`` as a float64 array, or a ValueError naming ``name`` unless numeric, finite, of ``ndim``."""
+def finite_array(values, name: str, *, ndim: int | None = None, min_size: int = 0,
+                 shape: tuple | None = None, allow_infinite: bool = False) -> np.ndarray:
+    """``values`` as a float64 array, or a ValueError naming ``name`` unless numeric, finite, of ``ndim``.
+
+    ``shape``, when given, is the expected shape with ``None`` for a free axis (``(None, 4, 2)``);
+    ``allow_infinite`` lets infinities through (NaN never passes).
+    """
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of numbers, got {type(values).__name__} {values!r:.40}")
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"{name} must be an array of numbers, got {type(values).__name__}") from None
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-D ({ndim}-dimensional), got shape {array.shape}")
+    if shape is not None and (array.ndim != len(shape) or any(
+            expected is not None and size != expected for size, expected in zip(array.shape, shape))):
+        wanted = "(" + ", ".join("n" if size is None else str(size) for size in shape) + ")"
+        raise ValueError(f"{name} must be an array of shape {wanted}, got shape {array.shape}")
     if array.size < min_size:
         raise ValueError(f"{name} needs at least {min_size} values, got {array.size}")
-    if not np.isfinite(array).all():
-        raise ValueError(f"{name} contains NaN or infinite values")
+    if np.isnan(array).any() if allow_infinite else not np.isfinite(array).all():
+        raise ValueError(f"{name} contains NaN{'' if allow_infinite else ' or infinite'} values")
     return array
+
+
+def integer_array(values, name: str) -> np.ndarray:
+    """``values`` as an int64 array, or a ValueError naming ``name`` unless every value is a whole number.
+
+    Integer and bool arrays pass; float arrays pass when every value is finite, whole and within int64.
+    """
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of integers, got {type(values).__name__} {values!r:.40}")
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be an array of integers, got {type(values).__name__}") from None
+    if array.dtype.kind in "iub":
+        return array.astype(np.int64)
+    if array.dtype.kind == "f" and np.isfinite(array).all() and (np.abs(array) < 2.0**63).all() and (
+            array == np.round(array)).all():
+        return array.astype(np.int64)
+    if array.size == 0 and array.dtype.kind in "fO":
+        return np.zeros(array.shape, dtype=np.int64)
+    raise ValueError(f"{name} must be an array of integers, got {array.dtype} values {array.ravel()[:4]!r:.80}")
 
 
 def point_array(values, name: str, *, min_points: int = 0) -> np.ndarray:
@@ -188,3 +225,45 @@ def load_json(text, what: str):
         raise ValueError(f"not {what}: {exc}") from None
     except RecursionError:
         raise ValueError(f"{what} nests too deeply to be read") from None
+
+
+def instance_of(value, types, name: str):
+    """``value`` unchanged, or a TypeError naming ``name`` unless it is an instance of ``types``.
+
+    For the objects a public function takes from another of paperlib (a fitted model, a pattern, a
+    result dataclass): the message names the class expected and the type received.
+    """
+    if not isinstance(value, types):
+        expected = " or ".join(t.__name__ for t in (types if isinstance(types, tuple) else (types,)))
+        article = "an" if expected[0] in "AEIOUaeiou" else "a"
+        raise TypeError(f"{name} must be {article} {expected}, got {type(value).__name__} {value!r:.60}")
+    return value
+
+
+def file_path(path, name: str = "path"):
+    """``path`` as a ``pathlib.Path`` naming a file to read or write, or a TypeError/ValueError naming ``name``.
+
+    A str or path-like object is accepted; an empty string (the current folder) or a path that names an
+    existing folder is a ValueError, so a reader or writer never fails later with IsADirectoryError.
+    """
+    from pathlib import Path
+
+    if not isinstance(path, (str, os.PathLike)) or isinstance(path, bytes):
+        raise TypeError(f"{name} must be a file path (str or pathlib.Path), got {type(path).__name__} {path!r:.60}")
+    if isinstance(path, str) and (not path.strip() or "\x00" in path):
+        raise ValueError(f"{name} must name a file, got {path!r}")
+    path = Path(path)
+    if path.is_dir():
+        raise ValueError(f"{name} must name a file, got the folder {str(path)!r}")
+    return path
+
+
+def data_frame(value, name: str, columns):
+    """``value`` unchanged if it is a pandas DataFrame holding ``columns``; else a TypeError or ValueError naming ``name``."""
+    import pandas as pd
+
+    instance_of(value, pd.DataFrame, name)
+    missing = [column for column in columns if column not in value.columns]
+    if missing:
+        raise ValueError(f"{name} lacks the columns {missing} (has {list(value.columns)[:12]})")
+    return value

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import betainc, betaln
 
-from paperlib._checks import budget, check_budget, finite_array, positive_number
+from paperlib._checks import budget, check_budget, finite_array, integer_array, positive_number
 
 __all__ = [
     "HistogramModes",
@@ -170,7 +170,11 @@ def log_binomial_tail(n, k, p) -> np.ndarray:
     .. [2] NIST DLMF 8.17.5 (binomial tail as a regularized incomplete beta function)
        and 8.17.22 (its continued fraction).
     """
-    n, k, p = np.broadcast_arrays(_as_integers(n, "n"), _as_integers(k, "k"), np.asarray(p, dtype=np.float64))
+    n, k, p = integer_array(n, "n"), integer_array(k, "k"), finite_array(p, "p")
+    try:
+        n, k, p = np.broadcast_arrays(n, k, p)
+    except ValueError:
+        raise ValueError(f"n, k and p must broadcast to one shape, got {n.shape}, {k.shape} and {p.shape}") from None
     if np.any(n < 0):
         raise ValueError("n (number of trials) must be >= 0")
     if not np.all((p >= 0) & (p <= 1)):
@@ -654,19 +658,6 @@ def _validated_histogram(counts, prior, max_bins=None) -> tuple[np.ndarray, np.n
 
 def _as_finite_vector(values, name: str, *, min_size: int) -> np.ndarray:
     return finite_array(values, name, ndim=1, min_size=min_size)
-
-
-def _as_integers(values, name: str) -> np.ndarray:
-    array = np.asarray(values)
-    if array.dtype.kind in "iu":
-        return array.astype(np.int64)
-    try:
-        floats = array.astype(np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be integers") from None
-    if not np.all(np.isfinite(floats) & (floats == np.round(floats))):
-        raise ValueError(f"{name} must be integers")
-    return floats.astype(np.int64)
 
 
 def _as_bin_ranges(intervals, n_bins: int) -> list[tuple[int, int]]:

@@ -32,6 +32,7 @@ from pathlib import Path
 import pandas as pd
 
 from ._atomic import atomic_path
+from ._checks import data_frame, file_path, instance_of
 from .repro import read_toml
 
 __all__ = ["Claim", "Claims", "VERDICTS", "claim_problems", "ledger_table", "load_claims", "write_ledger"]
@@ -81,7 +82,7 @@ def load_claims(path) -> Claims:
         Naming the file and the claim, for a missing key, a wrong type, an unknown
         verdict, a malformed statistic reference or a lowered verdict without a reason.
     """
-    path = Path(path)
+    path = file_path(path)
     data = read_toml(path, "claims")
     if data.get("paper") != path.stem:
         raise ValueError(f"{path}: 'paper' must be the file's stem {path.stem!r}, got {data.get('paper')!r}")
@@ -127,6 +128,9 @@ def claim_problems(claims: Claims, expected: dict) -> list[str]:
     the paper's notebooks must be referenced; every figure must be named; a claim
     checked by an expected failure must say why.
     """
+    instance_of(claims, Claims, "claims")
+    for notebook, statistics in instance_of(expected, dict, "expected").items():
+        instance_of(statistics, dict, f"expected[{notebook!r}]")
     problems = []
     referenced = {reference for claim in claims.claims for reference in claim.statistics}
     for claim in claims.claims:
@@ -162,6 +166,8 @@ def ledger_table(claims: Claims, check: pd.DataFrame) -> pd.DataFrame:
     check : pandas.DataFrame
         The table of :func:`paperlib.repro.check_stats` for the paper's notebooks.
     """
+    instance_of(claims, Claims, "claims")
+    data_frame(check, "check", ("notebook", "statistic", "kind", "value", "status"))
     by_reference = {f"{row.notebook}.{row.statistic}": row for row in check.itertuples()}
     rows = []
     for claim in claims.claims:
@@ -197,6 +203,9 @@ def _verdict(statuses: list[str]) -> str:
 
 def write_ledger(path, title: str, table: pd.DataFrame) -> Path:
     """Write a ledger table (:func:`ledger_table`) as Markdown at ``path``, atomically."""
+    path = file_path(path)
+    instance_of(title, str, "title")
+    data_frame(table, "table", ("where", "claim", "statistics", "verdict", "why"))
     counts = table.verdict.value_counts()
     lines = [
         f"# Claims ledger: {title}",
@@ -215,7 +224,6 @@ def write_ledger(path, title: str, table: pd.DataFrame) -> Path:
             f"`{reference}` ({kind or '?'}: {_short(value)}, {status})" for reference, kind, value, status in row.statistics
         )
         lines.append(f"| {row.where} | {_cell(row.claim)} | {checks or '-'} | {row.verdict} | {_cell(row.why)} |")
-    path = Path(path)
     with atomic_path(path) as temporary:
         temporary.write_text("\n".join(lines) + "\n")
     return path

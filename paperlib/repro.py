@@ -56,7 +56,7 @@ import numpy as np
 import pandas as pd
 
 from ._atomic import atomic_path
-from ._checks import load_json
+from ._checks import file_path, instance_of, load_json
 
 __all__ = [
     "QUALITIES",
@@ -285,7 +285,7 @@ def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Pa
 
 def load_stats(path) -> dict:
     """Read a ``stats.json`` file written by :func:`start` and :func:`record`."""
-    path = Path(path)
+    path = file_path(path)
     try:
         text = path.read_text()
     except FileNotFoundError:
@@ -303,7 +303,10 @@ def load_stats(path) -> dict:
 
 def statistics_without_times(data: dict) -> dict:
     """The statistics of a loaded ``stats.json`` minus wall times (for comparing runs)."""
-    return {name: value for name, value in data["statistics"].items() if not name.startswith(TIME_PREFIX)}
+    statistics = instance_of(data, dict, "data").get("statistics")
+    if not isinstance(statistics, dict):
+        raise ValueError(f"data must be a loaded stats.json with a 'statistics' table, got keys {list(data)[:8]}")
+    return {name: value for name, value in statistics.items() if not str(name).startswith(TIME_PREFIX)}
 
 
 def load_expected(path, notebooks=None) -> dict:
@@ -325,7 +328,7 @@ def load_expected(path, notebooks=None) -> dict:
         has no ``kind``, a kind its ``source`` does not support, a bound on a wall time,
         or an ``xfail`` that is not a missed paper claim with its measured value.
     """
-    path = Path(path)
+    path = file_path(path)
     expected = read_toml(path)
     if notebooks is not None:
         expected = {notebook: expected[notebook] for notebook in notebooks if notebook in expected}
@@ -347,13 +350,15 @@ def _validate_requires(spec: dict, where: str) -> None:
 
 def read_toml(path, what: str = "expected statistics") -> dict:
     """A TOML file's content; a missing or malformed file is a ValueError naming ``what`` and the path."""
-    path = Path(path)
+    path = file_path(path)
     try:
         return tomllib.loads(path.read_text())
     except FileNotFoundError:
         raise ValueError(f"{what} file not found: {path}") from None
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"{path}: invalid TOML ({exc})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{path}: cannot read the {what} file ({exc})") from None
 
 
 def _validate_spec(spec, where: str, statistic: str) -> None:

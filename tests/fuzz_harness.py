@@ -28,6 +28,7 @@ import argparse
 import collections
 import json
 import math
+import re
 import os
 import pickle
 import struct
@@ -304,6 +305,33 @@ def failure_list(results: dict) -> str:
     return "\n".join(lines) or "(none)"
 
 
+def _names_a_parameter(message: str, parameters: list[str]) -> bool:
+    return any(re.search(rf"\b{re.escape(parameter)}\b", message) for parameter in parameters)
+
+
+def unnamed_rejections(results: dict) -> str:
+    """The rejections whose message names none of the callable's parameters (issue 21 asks each to name one).
+
+    A budget message names its keyword, so it counts as named. One line per callable, most first.
+    """
+    import inspect
+
+    counts, first = collections.Counter(), {}
+    for name, outcomes in results.items():
+        try:
+            parameters = list(inspect.signature(_resolve(name)).parameters)
+        except (TypeError, ValueError):   # no signature to read (a builtin): not counted
+            continue
+        for outcome, detail, *_ in outcomes:
+            if outcome == "rejected" and not _names_a_parameter(detail, parameters):
+                counts[name] += 1
+                first.setdefault(name, detail)
+    rejected = sum(outcome == "rejected" for outcomes in results.values() for outcome, *_ in outcomes)
+    lines = [f"{sum(counts.values())} of {rejected} rejections in {len(counts)} callables name no parameter."]
+    lines += [f"- `{name}`: {count}; first: {first[name][:120]}" for name, count in counts.most_common()]
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--examples", type=int, default=40, help="Hypothesis inputs per callable")
@@ -329,7 +357,8 @@ def main(argv=None) -> int:
     text = (f"# Fuzz campaign\n\n{sum(map(len, results.values()))} inputs over {len(results)} callables in "
             f"{elapsed:.0f} s ({options.examples} per callable, {options.memory / 2**30:g} GiB and "
             f"{options.seconds:g} s per case, {options.jobs} workers).\n\n{summary_table(results)}\n\n"
-            f"## Callables with bad outcomes\n\n{failure_list(results)}\n")
+            f"## Callables with bad outcomes\n\n{failure_list(results)}\n\n"
+            f"## Rejections that name no parameter\n\n{unnamed_rejections(results)}\n")
     out = Path(options.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "summary.md").write_text(text)

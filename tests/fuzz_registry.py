@@ -4,7 +4,8 @@ Every public callable (each name in the ``__all__`` of the subpackages in :data:
 function or a class) has an entry in :data:`REGISTRY`; ``tests/test_fuzz.py`` fails when one is
 missing, so a new public function must come with its fuzz strategy. An entry is a line of
 ``parameter=kind`` pairs: the parameters before ``;`` are required and passed positionally in that
-order, those after it are optional keywords, each drawn or left out. Kinds name the strategies of
+order, those after it are optional keywords, each drawn or left out; those after ``|`` are required
+keyword-only parameters, always passed by keyword. Kinds name the strategies of
 :data:`KINDS`: every kind mixes plausible values (small valid inputs of the right shape) with the
 hostile values a careless or malicious caller passes (NaN, infinities, empty and ragged arrays,
 wrong types, negative and huge counts, strings, legacy random states).
@@ -338,7 +339,7 @@ REGISTRY = {
     "paperlib.stipple.glcm_features": "counts=counts",
     "paperlib.stipple.GLCMFeatures": "glcm=any contrast=any energy=any correlation=any",
     "paperlib.stipple.largest_rectangle": "mask=image",
-    "paperlib.stipple.learn_stipple_library": "tone_textures=any ; size=count iterations=count levels=count workers=count rng=rng",
+    "paperlib.stipple.learn_stipple_library": "tone_textures=any ; size=count iterations=count levels=count workers=count rng=rng progress=bool",
     "paperlib.stipple.level_grays": "tone_grays=vector ; pure_levels=vector",
     "paperlib.stipple.offset_directions": "offsets=vector",
     "paperlib.stipple.paper_radius_quantiles": "geometry=any",
@@ -380,56 +381,61 @@ REGISTRY = {
     "paperlib.mlts.barnsley_fern": "",
     "paperlib.mlts.box_counting_dimension": "points=points ; levels=count",
     "paperlib.mlts.coverage": "vertices=points shape=shape ; samples=count clip=bool",
-    "paperlib.mlts.dead_leaves": "shape=shape r_min=float r_max=float ; n_leaves=count alpha=float palette=str rng=rng return_labels=bool return_geometry=bool",
+    "paperlib.mlts.dead_leaves": "shape=shape ; n_leaves=count alpha=float palette=str rng=rng return_labels=bool return_geometry=bool | r_min=float r_max=float",
     "paperlib.mlts.dead_leaves_coverage": "n=count mean_area=any area=float",
     "paperlib.mlts.dead_leaves_coverage_std": "n=count shape=shape r_min=float r_max=float ; alpha=float",
     "paperlib.mlts.dead_leaves_mean_area": "r_min=float r_max=float ; alpha=float",
     "paperlib.mlts.dead_leaves_window_area": "shape=shape r_max=float",
-    "paperlib.mlts.ifs_chaos_game": "; n_points=count rng=rng",
-    "paperlib.mlts.ifs_fractal": "shape=shape ; n_points=count mode=str palette=str rng=rng return_labels=bool return_geometry=bool",
+    "paperlib.mlts.ifs_chaos_game": "; n_points=count rng=rng max_points=count",
+    "paperlib.mlts.ifs_fractal": "shape=shape ; n_points=count mode=str palette=str rng=rng return_labels=bool return_geometry=bool max_points=count max_pixels=count",
     "paperlib.mlts.load_palette": "source=path",
     "paperlib.mlts.object_diameter": "polygon=points",
     "paperlib.mlts.orientation_angle": "center=any point=any",
     "paperlib.mlts.paint": "canvas=image polygons=elements colors=vector ; alphas=vector lights=points light_height=float clip=bool samples=count",
+    "paperlib.mlts.read_texture_svg": "path_or_text=svg",
     "paperlib.mlts.poisson_line_tessellation": "shape=shape intensity=float ; palette=str rng=rng return_labels=bool return_geometry=bool",
     "paperlib.mlts.render": "script=any ; palette=str max_samples=count",
-    "paperlib.mlts.render_polygons": "polygons=elements colors=vector shape=shape ; alphas=vector lights=points light_height=float clip=bool samples=count",
+    "paperlib.mlts.render_polygons": "polygons=elements colors=vector shape=shape ; alphas=vector lights=points light_height=float clip=bool samples=count max_samples=count",
     "paperlib.mlts.render_structure": "structure=structure settings=any ; palette=str max_samples=count",
     "paperlib.mlts.rule_violations": "structure=structure",
     "paperlib.mlts.sample_script": "; rng=rng width=count height=count palette=str",
-    "paperlib.mlts.sample_structure": "layers=layers width=count height=count ; seed=rng max_trials=count",
+    "paperlib.mlts.sample_structure": "layers=layers width=count height=count ; seed=rng max_trials=count order=str",
     "paperlib.mlts.sierpinski_triangle": "",
-    "paperlib.mlts.tessellation_cells": "structure=structure samples=count rng=rng",
+    "paperlib.mlts.tessellation_cells": "structure=structure samples=count ; rng=rng max_samples=count",
+    "paperlib.mlts.texture_svg": "structure=structure settings=any ; palette=str",
     "paperlib.mlts.texel": "kind=str ; rng=rng n_vertices=count",
     "paperlib.mlts.texel_batch": "kind=str count=count ; rng=rng n_vertices=count",
+    "paperlib.mlts.write_texture_svg": "structure=structure settings=any path=path ; palette=str",
     "paperlib.mlts.voronoi_tessellation": "shape=shape n_cells=count ; palette=str rng=rng return_labels=bool return_geometry=bool",
-    "paperlib.sketch.box_counting_dimension": "points=points closed=bool",
-    "paperlib.sketch.curve_hausdorff": "a=points b=points closed=bool ; resolution=float",
-    "paperlib.sketch.densify": "points=points closed=bool spacing=float",
+    "paperlib.sketch.box_counting_dimension": "points=points | closed=bool",
+    "paperlib.sketch.curve_hausdorff": "a=points b=points ; resolution=float | closed=bool",
+    "paperlib.sketch.densify": "points=points | closed=bool spacing=float",
     "paperlib.sketch.turning_ks": "a=points b=points",
-    "paperlib.sketch.turning_per_sample": "points=points closed=bool",
+    "paperlib.sketch.turning_per_sample": "points=points | closed=bool",
     "paperlib.sketch.Elaboration": "points=points angles=vector sketch=points steering=any states=any closed=bool closing_gap=any restarts=any crossings=any untangled=any",
-    "paperlib.sketch.SketchModel": "order=counts scales=count steering_scale=any weights=vector similarity_sigma=any filter=any causal=bool subsample=bool closed=bool samples_per_curve=any curves=elements states=any angles=vector curve=points sample=any position=any successor=any neighbours=any similarity=any transitions=str transition=any extent_ratio=any",
-    "paperlib.sketch.check_curve": "points=points closed=bool ; min_points=count name=str",
+    "paperlib.sketch.SketchModel": "order=counts scales=count steering_scale=any weights=vector similarity_sigma=any filter=any causal=bool subsample=bool closed=bool samples_per_curve=any curve_samples=any curves=elements states=any angles=vector steering=vector curve=points sample=any position=any successor=any neighbours=any similarity=any transitions=str transition=any extent_ratio=any",
+    "paperlib.sketch.check_curve": "points=points ; min_points=count name=str | closed=bool",
+    "paperlib.sketch.close_angles": "theta=vector",
     "paperlib.sketch.close_curve": "path=path",
+    "paperlib.sketch.coarse_ring": "theta=vector step=float start=any",
     "paperlib.sketch.coarsen": "curve=points model=any ; n_samples=count closed=bool",
     "paperlib.sketch.copied_runs": "model=any states=any",
-    "paperlib.sketch.crossing_segments": "points=points closed=bool",
+    "paperlib.sketch.crossing_segments": "points=points | closed=bool",
     "paperlib.sketch.default_weights": "scales=count order=counts ; max_values=count",
     "paperlib.sketch.elaborate": "model=any sketch=points ; closed=bool n_samples=count sigma=float top=count mode=str window=window closure=str rng=rng",
     "paperlib.sketch.filter_weights": "; filter_width=count",
     "paperlib.sketch.gyration_radius": "points=points",
     "paperlib.sketch.integrate_angles": "theta=vector step=float",
-    "paperlib.sketch.lowpass": "theta=vector weights=vector closed=bool ; causal=bool",
+    "paperlib.sketch.lowpass": "theta=vector weights=vector ; causal=bool | closed=bool",
     "paperlib.sketch.match_size": "points=points reference=points",
-    "paperlib.sketch.multiscale_angles": "theta=vector scales=count weights=vector closed=bool ; causal=bool max_values=count",
-    "paperlib.sketch.resample_curve": "points=points n_points=count closed=bool",
-    "paperlib.sketch.resample_simple": "points=points n_points=count closed=bool ; name=str",
+    "paperlib.sketch.multiscale_angles": "theta=vector scales=count weights=vector ; causal=bool max_values=count | closed=bool",
+    "paperlib.sketch.resample_curve": "points=points n_points=count | closed=bool",
+    "paperlib.sketch.resample_simple": "points=points n_points=count ; name=str | closed=bool",
     "paperlib.sketch.sketch_from_svg": "source=path ; tolerance=float",
     "paperlib.sketch.state_similarity": "a=points b=points weights=vector sigma=float",
-    "paperlib.sketch.tangent_angles": "points=points closed=bool",
+    "paperlib.sketch.tangent_angles": "points=points | closed=bool",
     "paperlib.sketch.total_turning": "theta=vector",
-    "paperlib.sketch.train": "curves=elements ; order=counts scales=count filter_width=count weights=vector transitions=str causal=bool subsample=bool closed=bool max_values=count",
+    "paperlib.sketch.train": "curves=elements ; order=counts scales=count filter_width=count weights=vector transitions=str causal=bool subsample=bool samples_per_curve=any closed=bool close_steering=bool max_values=count",
     "paperlib.sketch.wrap_angle": "angle=float",
     "paperlib.datasets.Exemplar": "elements=elements labels=counts categories=any window=window pattern=pattern truth=any description=str",
     "paperlib.datasets.GlyphType": "char=str size=count count=count ; name=str",
@@ -478,18 +484,18 @@ REGISTRY = {
     "paperlib.datasets.sketchy_hatching_exemplar": "; n_elements=count spacing=float length=float rng=rng",
     "paperlib.datasets.two_hatchings_exemplar": "; width=count height=count rng=rng",
     "paperlib.datasets.wave_hatching_exemplar": "; n_elements=count jitter=float spacing=float rng=rng",
-    "paperlib.widgets.ArrangementExplorer": "exemplar=any exemplar_seed=rng seed=rng T=count window_scale=any density=image labels=counts interaction=str image=image figsize=shape dpi=float",
+    "paperlib.widgets.ArrangementExplorer": "| exemplar=any exemplar_seed=rng seed=rng T=count window_scale=any density=image labels=counts interaction=str image=image figsize=shape dpi=float",
     "paperlib.widgets.Drawing": "name=str elements=elements frame=any window=window truth=any truth_categories=any description=str",
     "paperlib.widgets.arrangement_explorer": "; exemplar_seed=rng seed=rng T=count density=image labels=counts interaction=str image=image figsize=shape dpi=float svg=svg",
     "paperlib.widgets.density_image": "kind=str window=window ; image=image resolution=float",
     "paperlib.widgets.scaled_window": "window=window scale=float",
-    "paperlib.widgets.MLTSExplorer": "random_seed=any max_tried=any",
-    "paperlib.widgets.mlts_explorer": "; size=count",
-    "paperlib.widgets.StippleExplorer": "source=path sheet_seed=any n_tones=count block=count tone=image N=any T1=any T2=any iterations=count tile=any seed=rng image=image render_size=any min_chunk=float workers=count figsize=shape dpi=float",
+    "paperlib.widgets.MLTSExplorer": "; output_dir=path | random_seed=any max_tried=any",
+    "paperlib.widgets.mlts_explorer": "; size=count output_dir=path",
+    "paperlib.widgets.StippleExplorer": "| source=path sheet_seed=any n_tones=count block=count tone=image N=any T1=any T2=any iterations=count tile=any seed=rng image=image render_size=any min_chunk=float workers=count figsize=shape dpi=float",
     "paperlib.widgets.stipple_explorer": "; source=path n_tones=count block=count tone=image iterations=count seed=rng image=image min_chunk=float workers=count figsize=shape dpi=float",
-    "paperlib.widgets.StrokePatternExplorer": "exemplar=any exemplar_seed=rng contour=points rings=count amount=float vary=any choice=str seed=rng figsize=shape dpi=float canvas_size=shape",
+    "paperlib.widgets.StrokePatternExplorer": "| exemplar=any exemplar_seed=rng contour=points rings=count amount=float vary=any choice=str seed=rng figsize=shape dpi=float canvas_size=shape",
     "paperlib.widgets.strokepattern_explorer": "; exemplar_seed=rng epsilon=float contour=points rings=count amount=float choice=str seed=rng figsize=shape dpi=float canvas_size=shape",
-    "paperlib.widgets.SketchExplorer": "training=any order=counts scales=count sigma=float top=count mode=str closure=str window=window seed=rng n_samples=count preset=any figsize=shape dpi=float canvas_size=shape",
+    "paperlib.widgets.SketchExplorer": "| training=any order=counts scales=count sigma=float top=count mode=str closure=str window=window seed=rng n_samples=count preset=any figsize=shape dpi=float canvas_size=shape",
     "paperlib.widgets.sketch_explorer": "; order=counts scales=count sigma=float top=count mode=str closure=str window=window seed=rng n_samples=count figsize=shape dpi=float canvas_size=shape",
     "paperlib.repro.atomic_path": "path=path",
     "paperlib.repro.check_stats": "; figures_dir=path",
@@ -498,7 +504,7 @@ REGISTRY = {
     "paperlib.repro.load_stats": "path=path",
     "paperlib.repro.record": "name=str value=any",
     "paperlib.repro.save_figure": "fig=any name=str ; svg=svg dpi=float",
-    "paperlib.repro.start": "out_dir=any seed=rng quality=str",
+    "paperlib.repro.start": "out_dir=any | seed=rng quality=str",
     "paperlib.repro.statistics_without_times": "data=any",
     "paperlib.parallel.run_many": "fn=any tasks=any ; rng=rng workers=count progress=bool",
     "paperlib.parallel.spawn_seeds": "rng=rng n=count",
@@ -506,7 +512,7 @@ REGISTRY = {
     "paperlib.reproduce.find_notebooks": "notebooks_dir=any ; pattern=pattern",
     "paperlib.reproduce.paper_and_figure": "stem=any",
     "paperlib.reproduce.reproduce": "; root=path quality=str jobs=count seed=rng timeout=float progress=bool figures_dir=path build_dir=path",
-    "paperlib.reproduce.run_notebook": "path=path layout=any ; quality=str seed=rng timeout=float",
+    "paperlib.reproduce.run_notebook": "path=path layout=any ; quality=str seed=rng timeout=float progress=bool",
     "paperlib.reproduce.seed_study": "only=any seeds=any ; root=path quality=str jobs=count timeout=float build_dir=path",
     "paperlib.reproduce.write_index": "layout=any stems=any expected=any",
     "paperlib.claims.Claim": "where=any claim=any statistics=any",
@@ -532,63 +538,12 @@ NOT_FUZZED = {
 #: CI profile and are reported, but do not fail it. Remove an entry once the callable passes.
 KNOWN_FAILURES: dict[str, str] = {
     # measured by `make fuzz` (33 derandomized inputs per callable, 6 GiB / 10 s per case)
-    "paperlib.arrangement.Categorization": "AttributeError ('object' has no attribute 'flags', categorize.py) on "
-                                           "fields of the wrong type: 11 of 33",
-    "paperlib.arrangement.Split": "AttributeError ('str' has no attribute 'flags', categorize.py) on fields of the "
-                                  "wrong type: CI profile (new class, not in the 33-input campaign)",
-    "paperlib.arrangement.recursive_feature_values": "IndexError (categorize.py) when features is an array, not a "
-                                                     "DataFrame: CI profile (new function)",
-    "paperlib.arrangement.box_distance_matrix": "numba TypingError on empty or non-(n, 4, 2) input: 24 of 33",
-    "paperlib.arrangement.unwrapped_orientation": "IndexError (categorize.py) on a (3, 3) array: 5 of 33",
-    "paperlib.arrangement.subset_size": "OverflowError (robpca.py) for alpha=-inf: CI profile",
-    "paperlib.pointprocess.default_nd": "OverflowError (quadrature.py) for inf: 1 of 34",
-    "paperlib.pointprocess.quadscheme": "MemoryError at nd=1e9 (no quadrature budget): 1 of 34",
-    "paperlib.pointprocess.rpoispp": "MemoryError for a huge intensity (1.6 EiB asked): 1 of 34",
-    "paperlib.pointprocess.fine_nd": "AttributeError ('NoneType' has no attribute 'n', fit.py) when the pattern "
-                                     "is not a PointPattern: 24 of 33",
-    "paperlib.pointprocess.intensity_map_values": "AttributeError (simulate.py) when the map is not callable: 2 of 33",
-    "paperlib.pointprocess.interaction_counts": "AttributeError (models.py) when the model is not a model: 7 of 33",
-    "paperlib.pointprocess.interaction_pairs": "AttributeError (models.py) when the model is not a model: 7 of 33",
 }
 
 #: Callables of this change's own modules whose fuzzing still gives bad outcomes: not fixed yet for lack of
 #: time (issue 21 stays open for them), with the failure measured by ``make fuzz``. Like KNOWN_FAILURES they are
 #: run and reported but do not fail the CI profile; the list is the to-do of the issue.
 OPEN_FAILURES: dict[str, str] = {
-    "paperlib.claims.claim_problems": "AttributeError on an argument that is not a Claims: 33 of 33",
-    "paperlib.claims.ledger_table": "AttributeError on an argument that is not a DataFrame: 33 of 33",
-    "paperlib.claims.load_claims": "IsADirectoryError for a folder path: 3 of 33",
-    "paperlib.claims.write_ledger": "AttributeError on claims that are not Claims: 33 of 33",
-    "paperlib.datasets.alternating_color_exemplar": "MemoryError at a count of 1e9 (no budget): 1 of 34",
-    "paperlib.datasets.bars_exemplar": "MemoryError at height=10000 (no size budget): 1 of 33",
-    "paperlib.datasets.glyph_outlines": "MemoryError at n_points=1e12 (no budget): 2 of 33",
-    "paperlib.datasets.irregular_exemplar": "MemoryError at height=1e9 (no budget): 7 of 33",
-    "paperlib.datasets.leaf_outlines": "hang (> 10 s) at n=6256, n_points=5938 (no budget): 2 of 33",
-    "paperlib.datasets.regularity_exemplar": "hang at T=1e9 (rmh steps, no budget): 1 of 33",
-    "paperlib.datasets.stipple_tone_sheet": "hang at n_tones=2**63-1: 1 of 33",
-    "paperlib.datasets.two_hatchings_exemplar": "hang at width=1e308: 2 of 33",
-    "paperlib.geometry.resample_open_curve": "IndexError at n_points=2**63-1 (no budget): 2 of 34",
-    "paperlib.mlts.ifs_chaos_game": "MemoryError at n_points=1e12 (no budget): 2 of 33",
-    "paperlib.mlts.ifs_fractal": "MemoryError for shape (1e6, 1e6) (no budget): 1 of 33",
-    "paperlib.mlts.render_polygons": "MemoryError for shape (2**31, 2) (no budget on the image size): CI profile",
-    "paperlib.mlts.tessellation_cells": "AttributeError when rng is None (not normalised): 29 of 33",
-    "paperlib.repro.load_expected": "IsADirectoryError for a folder path: 3 of 33",
-    "paperlib.repro.statistics_without_times": "IndexError on an argument that is not a dict: 12 of 33",
-    "paperlib.reproduce.paper_and_figure": "AttributeError on a non-str stem: 23 of 33",
-    "paperlib.reproduce.write_index": "AttributeError on a layout that is not a Layout: 33 of 33",
-    "paperlib.sketch.close_curve": "IndexError on an empty path: 5 of 33",
-    "paperlib.sketch.coarsen": "AttributeError when model is not a SketchModel: 20 of 33",
-    "paperlib.sketch.copied_runs": "AttributeError when model is not a SketchModel: 33 of 33",
-    "paperlib.stipple.ace_change_kernel": "numba TypingError on arrays of the wrong dtype or rank: 31 of 33",
-    "paperlib.stipple.flip_update_kernel": "numba TypingError on arrays of the wrong dtype or rank: 30 of 33",
-    "paperlib.stipple.paper_offsets": "MemoryError at 1e9 (no budget): 3 of 33",
-    "paperlib.stipple.paper_radius_quantiles": "AttributeError on an argument that is not a SynthesisResult: 33 of 33",
-    "paperlib.strokepattern.continuation": "AttributeError on arguments that are not OrientedBoxes: 11 of 33",
-    "paperlib.strokepattern.measure_tables": "IndexError on 1-D half_lengths: 10 of 33",
-    "paperlib.strokepattern.plot_boxes": "AttributeError on a list that is not OrientedBoxes: 33 of 33",
-    "paperlib.strokepattern.plot_graph": "IndexError on non-array positions: 14 of 33",
-    "paperlib.strokepattern.ring_neighbourhoods": "MemoryError at n=1e12 nodes (no budget on n): 1 of 33",
-    "paperlib.strokepattern.target_count": "AttributeError on an argument that is not a PatternAnalysis: 33 of 33",
 }
 
 #: Exceptions that are part of a callable's contract rather than bad input: calling it out of order.
@@ -599,21 +554,31 @@ EXPECTED_EXCEPTIONS = {
 }
 
 
+def _pairs(text: str) -> list[tuple[str, str]]:
+    return [tuple(item.split("=", 1)) for item in text.split()]
+
+
 def parse_entry(spec: str) -> tuple[list[tuple[str, str]], list[tuple[str, str]]]:
-    """``(required, optional)`` lists of ``(parameter, kind)`` from a registry line."""
-    required, _, optional = spec.partition(";")
+    """``(required, optional)`` lists of ``(parameter, kind)`` from a registry line (without its ``|`` part)."""
+    required, _, optional = spec.partition("|")[0].partition(";")
+    return _pairs(required), _pairs(optional)
 
-    def pairs(text: str):
-        return [tuple(item.split("=", 1)) for item in text.split()]
 
-    return pairs(required), pairs(optional)
+def required_keywords(spec: str) -> list[tuple[str, str]]:
+    """``(parameter, kind)`` of the required keyword-only parameters: the pairs after ``|`` in a registry line.
+
+    For callables whose parameters have no default and cannot be passed positionally (``def f(a, *, b)``):
+    ``"a=any | b=rng"`` always passes ``b=`` by keyword.
+    """
+    return _pairs(spec.partition("|")[2])
 
 
 def case_strategy(name: str):
     """The Hypothesis strategy of one call of ``name``: ``(args, kwargs)``."""
     required, optional = parse_entry(REGISTRY[name])
     args = st.tuples(*(KINDS[kind] for _, kind in required))
-    kwargs = st.fixed_dictionaries({}, optional={parameter: KINDS[kind] for parameter, kind in optional})
+    always = {parameter: KINDS[kind] for parameter, kind in required_keywords(REGISTRY[name])}
+    kwargs = st.fixed_dictionaries(always, optional={parameter: KINDS[kind] for parameter, kind in optional})
     return st.tuples(args, kwargs)
 
 

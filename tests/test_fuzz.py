@@ -38,6 +38,7 @@ def test_registry_entries_name_real_parameters_and_kinds():
 
     for name, spec in fuzz_registry.REGISTRY.items():
         required, optional = fuzz_registry.parse_entry(spec)
+        optional = optional + fuzz_registry.required_keywords(spec)
         try:
             parameters = inspect.signature(fuzz_harness._resolve(name)).parameters
         except ValueError:  # no signature (an exception class implemented in C): nothing to check

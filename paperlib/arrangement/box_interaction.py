@@ -67,6 +67,7 @@ import numba
 import numpy as np
 import pandas as pd
 
+from paperlib._checks import as_generator, finite_array
 from paperlib.pointprocess import (
     MultiStraussHard,
     PairDistance,
@@ -143,8 +144,8 @@ def box_distance_matrix(corners_a, corners_b=None, distance: str = "hausdorff") 
     ndarray, shape (n, m)
     """
     kind = _kind(distance)
-    a = np.ascontiguousarray(corners_a, dtype=np.float64)
-    b = a if corners_b is None else np.ascontiguousarray(corners_b, dtype=np.float64)
+    a = np.ascontiguousarray(finite_array(corners_a, "corners_a", shape=(None, 4, 2)))
+    b = a if corners_b is None else np.ascontiguousarray(finite_array(corners_b, "corners_b", shape=(None, 4, 2)))
     return _all_pairs(kind, a, b)
 
 
@@ -509,7 +510,7 @@ def simulate_box_model(model: MultiStraussHard, reference_corners, window: Windo
         The reference (index within its category) pasted on each point.
     """
     kind = _kind(distance)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     k = model.n_types
     counts = np.array([len(c) for c in reference_corners], dtype=np.int64)
     flat = np.ascontiguousarray(np.concatenate([np.asarray(c, dtype=np.float64) for c in reference_corners]))

@@ -171,6 +171,7 @@ from paperlib.acontrario import (
     interval_log10_nfa,
     outlier_intervals,
 )
+from paperlib._checks import as_generator, data_frame, finite_array, instance_of
 from paperlib.geometry import as_elements
 
 from .features import COUNT_SCALE, element_features
@@ -361,7 +362,7 @@ class Split:
     status: str
 
     def __post_init__(self):
-        self.members.flags.writeable = False
+        instance_of(self.members, np.ndarray, "members").flags.writeable = False
 
 
 @dataclass(frozen=True)
@@ -402,8 +403,8 @@ class Categorization:
     splits: tuple[Split, ...] = ()
 
     def __post_init__(self):
-        self.labels.flags.writeable = False
-        self.counts.flags.writeable = False
+        instance_of(self.labels, np.ndarray, "labels").flags.writeable = False
+        instance_of(self.counts, np.ndarray, "counts").flags.writeable = False
 
     @property
     def n_categories(self) -> int:
@@ -520,7 +521,7 @@ def categorize(
     }
     if method == "recursive":
         return _categorize_recursively(features, parameters)
-    return _categorize_as_the_paper(features, parameters, np.random.default_rng(rng))
+    return _categorize_as_the_paper(features, parameters, as_generator(rng))
 
 
 def _categorize_as_the_paper(features: pd.DataFrame, parameters: dict, generator) -> Categorization:
@@ -601,6 +602,7 @@ def recursive_feature_values(features: pd.DataFrame) -> dict[str, np.ndarray]:
     -------
     dict of str to ndarray, shape (n,)
     """
+    data_frame(features, "features", ("area", "crossings_raw", "extremities_raw", "elongation", "orientation"))
     area = features["area"].to_numpy(dtype=float)
     smallest = np.finfo(float).tiny
     return {
@@ -859,7 +861,7 @@ def unwrapped_orientation(orientation) -> np.ndarray:
         tie). Differences between close axes are the paper's, and no two close axes straddle
         the origin.
     """
-    values = np.asarray(orientation, dtype=float) % 0.5
+    values = finite_array(orientation, "orientation", ndim=1) % 0.5
     if values.size == 0:
         return values
     ordered = np.sort(values)

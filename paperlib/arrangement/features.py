@@ -120,7 +120,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from paperlib._checks import positive_number
+from paperlib._checks import finite_array, positive_number
 from paperlib.geometry import Element, StackedStrokes, oriented_bounding_boxes, stack_strokes
 
 __all__ = [
@@ -176,22 +176,23 @@ def normalized_area(area, reference_area):
     reference_area : float
         Area of the reference arrangement's surface (> 0).
     """
-    return np.minimum(np.asarray(area, dtype=float) / (AREA_FRACTION * positive_number(reference_area, "reference_area")), 1.0)
+    area = finite_array(area, "area", allow_infinite=True)
+    return np.minimum(area / (AREA_FRACTION * positive_number(reference_area, "reference_area")), 1.0)
 
 
 def normalized_orientation(angle):
     """Major-axis angle in ``[0, pi)`` over 2 pi, so in ``[0, 0.5)`` (Hurtut 2009, section 2.1)."""
-    return np.asarray(angle, dtype=float) / ORIENTATION_PERIOD
+    return finite_array(angle, "angle") / ORIENTATION_PERIOD
 
 
 def normalized_elongation(elongation):
     """Elongation over 3, capped at 1 (Hurtut 2009, section 2.1); infinite elongation gives 1."""
-    return np.minimum(np.asarray(elongation, dtype=float) / ELONGATION_CAP, 1.0)
+    return np.minimum(finite_array(elongation, "elongation", allow_infinite=True) / ELONGATION_CAP, 1.0)
 
 
 def normalized_count(count):
     """Number of extremities or crossings over 10, not capped (Hurtut 2009, section 2.1)."""
-    return np.asarray(count, dtype=float) / COUNT_SCALE
+    return finite_array(count, "count") / COUNT_SCALE
 
 
 # --------------------------------------------------------------------------- public API

@@ -74,6 +74,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy import stats
 
+from paperlib._checks import as_generator, integer_at_least
+
 __all__ = ["DistanceCutoffs", "ExactFitError", "RobustPCA", "robust_pca", "subset_size"]
 
 CUTOFF_QUANTILE = 0.975  # rrcov's crit.pca.distances and robustbase's reweighting quantile
@@ -171,6 +173,7 @@ def subset_size(n: int, k: int, alpha: float) -> int:
     h = floor(2 m - n + 2 (n - m) alpha) with m = floor((n + k + 1) / 2): alpha = 1/2 gives the
     largest breakdown point, m observations; alpha = 1 gives all n.
     """
+    n, k, alpha = integer_at_least(n, "n", 1), integer_at_least(k, "k", 1), _checked_alpha(alpha)
     half = (n + k + 1) // 2
     return int(np.floor(2 * half - n + 2 * (n - half) * alpha))
 
@@ -235,7 +238,7 @@ def robust_pca(X, n_components: int = 1, *, alpha: float = 0.75, rng=None) -> Ro
     n, p = X.shape
     k = _checked_n_components(n_components, n, p)
     alpha = _checked_alpha(alpha)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     h = subset_size(n, k, alpha)
     _refuse_identical_majority(X, h)
 

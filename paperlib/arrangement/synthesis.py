@@ -46,6 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from paperlib._checks import as_generator, budget, check_budget
 from paperlib.geometry import Element, Stroke, as_elements, oriented_bounding_boxes, write_svg
 from paperlib.pointprocess import (
     MultiStraussHard,
@@ -55,6 +56,8 @@ from paperlib.pointprocess import (
     fit_strauss_hardcore,
     rmh,
 )
+
+from paperlib.pointprocess.simulate import MAX_STEPS
 
 from .box_interaction import BoxInteractionFit, fit_box_model, simulate_box_model
 
@@ -404,7 +407,7 @@ def _positive_somewhere_inside(image: np.ndarray, window: Window) -> bool:
 
 
 def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_000, start=None, rng=None,
-               progress: bool = False) -> Arrangement:
+               progress: bool = False, max_steps: int = MAX_STEPS) -> Arrangement:
     """Synthesise a new arrangement from a fitted model (Hurtut 2009, section 3.3).
 
     Runs ``T`` Metropolis-Hastings steps of the fitted multitype Strauss hard-core model in
@@ -436,6 +439,8 @@ def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_00
         streams are spawned from it: one for the chain, one for picking references.
     progress : bool
         Show rmh's progress bar.
+    max_steps : int, optional
+        Budget: the largest ``T`` allowed (default :data:`paperlib.pointprocess.simulate.MAX_STEPS`, 10**8).
 
     Returns
     -------
@@ -461,9 +466,10 @@ def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_00
     window = _check_window(window, "window")
     if isinstance(T, bool) or not isinstance(T, (int, np.integer)) or T < 1:
         raise ValueError(f"T (number of MCMC steps) must be an integer >= 1, got {T!r}")
+    check_budget(int(T), budget(max_steps, "max_steps"), "max_steps", "MCMC steps (T)")
     intensity_map = _intensity_map(density, window)
     _check_room(model.model, window)
-    chain_rng, paste_rng = np.random.default_rng(rng).spawn(2)
+    chain_rng, paste_rng = as_generator(rng).spawn(2)
     if model.interaction != "centre":
         if start is not None:
             raise ValueError("models with box interactions start from the empty arrangement: pass start=None")
@@ -471,7 +477,7 @@ def synthesize(model: ArrangementModel, window, *, density=None, T: int = 100_00
                                             distance=model.fit.distance, intensity_map=intensity_map, rng=chain_rng)
     else:
         pattern = rmh(model.model, window, int(T), start=start, intensity_map=intensity_map, rng=chain_rng,
-                      progress=progress)
+                      progress=progress, max_steps=max_steps)
         n_refs = np.array([len(r) for r in model.references], dtype=np.int64)
         picks = paste_rng.integers(0, n_refs[pattern.marks]) if pattern.n else np.empty(0, dtype=np.int64)
     marks = pattern.marks

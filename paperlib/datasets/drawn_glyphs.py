@@ -65,7 +65,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from paperlib._checks import integer_at_least, positive_number
+from paperlib._checks import as_generator, integer_at_least, positive_number
 from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import PointPattern, Window
 
@@ -209,7 +209,7 @@ def drawn_glyph(char: str, size: float, *, angle: float = 0.0, jitter: float = 0
         angle = float(angle)
     except (TypeError, ValueError):
         raise TypeError(f"angle must be a number of degrees, got {angle!r}") from None
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     template = _glyph(char, font, size).element
     theta = math.radians(angle)
     rotation = np.array([[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]])
@@ -311,7 +311,7 @@ def drawn_glyph_exemplar(types, window: Window | None = None, *, size_spread: fl
     frame = _frame(window)
     size_spread = _fraction(size_spread, "size_spread", 1.0)
     rotation = _fraction(rotation, "rotation", 180.0)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     labels = rng.permutation(np.repeat(np.arange(len(types)), [t.count for t in types]))
     sizes = np.array([types[k].size for k in labels]) * (1.0 + size_spread) ** rng.uniform(-1.0, 1.0, labels.size)
     angles = rng.uniform(-rotation, rotation, labels.size)
@@ -409,6 +409,6 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
     if family not in _FAMILIES:
         raise ValueError(f"family must be one of {tuple(_FAMILIES)}, got {family!r}")
     table = _FAMILIES[family]
-    children = np.random.default_rng(rng).spawn(len(table))
+    children = as_generator(rng).spawn(len(table))
     return {name: (differs, drawn_glyph_exemplar(types, font=_HELD_OUT_FONTS.get(name, "futural"), rng=child))
             for (name, (differs, types)), child in zip(table.items(), children)}

@@ -86,9 +86,10 @@ from pathlib import Path
 
 import numpy as np
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, file_path, positive_number
 from paperlib.geometry import Element
 from paperlib.pointprocess import MultiStraussHard, PointPattern, Window, rmh
+from paperlib.pointprocess.simulate import MAX_STEPS
 
 from .hershey import hershey_glyph
 
@@ -175,9 +176,10 @@ def _pair(values, name: str, check) -> tuple:
     return tuple(check(v, f"{name}[{i}]") for i, v in enumerate(values))
 
 
-def _steps(T) -> int:
+def _steps(T, max_steps) -> int:
     if isinstance(T, bool) or not isinstance(T, (int, np.integer)) or T < 1:
         raise ValueError(f"T (number of Metropolis-Hastings steps) must be a positive integer, got {T!r}")
+    check_budget(int(T), budget(max_steps, "max_steps"), "max_steps", "Metropolis-Hastings steps (T)")
     return int(T)
 
 
@@ -284,7 +286,7 @@ def _simulate(beta, gamma, r, hc, categories, chars, sizes, frame, T, font, rng,
     margin = _margin(glyphs, rotated)
     inner = _shrunk(frame, margin)
     model = MultiStraussHard(beta, gamma=gamma, r=r, hc=hc, categories=categories)
-    pattern = rmh(model, inner, T, rng=rng)
+    pattern = rmh(model, inner, T, rng=rng, max_steps=T)  # T was checked against the caller's budget
     truth = {
         "process": "MultiStraussHard",
         "beta": _matrix(model.beta),
@@ -328,6 +330,7 @@ def two_category_exemplar(
     T: int = 100_000,
     font: str = "futural",
     rng=None,
+    max_steps: int = MAX_STEPS,
 ) -> Exemplar:
     """Two glyph categories, one regular and one random, repulsive or independent between them.
 
@@ -359,6 +362,9 @@ def two_category_exemplar(
         Inter-category strength in [0, 1], radius > 0, hard core in [0, between_r].
     T : int
         Metropolis-Hastings steps (default 1e5, the paper's).
+    max_steps : int, optional
+        Budget: the largest ``T`` allowed (default :data:`paperlib.pointprocess.simulate.MAX_STEPS`,
+        10**8), as for :func:`paperlib.pointprocess.rmh`.
     font : str
         Hershey font.
     rng : None, int or numpy.random.Generator
@@ -395,7 +401,7 @@ def two_category_exemplar(
         raise ValueError(f"between_hc = {between_hc} exceeds between_r = {between_r}")
     if between == "independent":
         between_gamma, between_hc = 1.0, 0.0
-    frame, T = _frame(window), _steps(T)
+    frame, T = _frame(window), _steps(T, max_steps)
     gamma_m = [[gamma[0], between_gamma], [between_gamma, gamma[1]]]
     r_m = [[r[0], between_r], [between_r, r[1]]]
     hc_m = [[hc[0], between_hc], [between_hc, hc[1]]]
@@ -418,6 +424,7 @@ def big_small_exemplar(
     T: int = 100_000,
     font: str = "futural",
     rng=None,
+    max_steps: int = MAX_STEPS,
 ) -> Exemplar:
     """Big glyphs with a large hard core pushing small ones back (Hurtut Fig. 5-b).
 
@@ -444,7 +451,7 @@ def big_small_exemplar(
         Intensity parameters (big, small), > 0.
     hc_big, hc_small, hc_between : float, optional
         Hard cores (> 0) between big glyphs, small glyphs, and big and small ones.
-    T, font, rng
+    T, font, rng, max_steps
         As for :func:`two_category_exemplar`.
 
     Returns
@@ -469,7 +476,7 @@ def big_small_exemplar(
     for value, default, name in zip((hc_big, hc_small, hc_between), defaults, ("hc_big", "hc_small", "hc_between")):
         hcs.append(default if value is None else positive_number(value, name))
     hc_m = [[hcs[0], hcs[2]], [hcs[2], hcs[1]]]
-    frame, T = _frame(window), _steps(T)
+    frame, T = _frame(window), _steps(T, max_steps)
     glyphs, pattern, truth = _simulate(beta, 1.0, hc_m, hc_m, chars, chars, sizes, frame, T, font, rng)
     description = (f"big {chars[0]!r} (size {sizes[0]:g}) and small {chars[1]!r} (size {sizes[1]:g}) glyphs; "
                    f"hard cores {hcs[0]:.3g} / {hcs[1]:.3g} / between {hcs[2]:.3g}: bivariate hard-core process, "
@@ -489,6 +496,7 @@ def regularity_exemplar(
     T: int = 100_000,
     font: str = "futural",
     rng=None,
+    max_steps: int = MAX_STEPS,
 ) -> Exemplar:
     """One category from regular (gamma = 0) to random (gamma = 1) (Hurtut Fig. 5 a-e).
 
@@ -508,7 +516,7 @@ def regularity_exemplar(
     size, beta, r, hc : float
         Glyph size (window units, > 0), intensity parameter (> 0), interaction radius
         (> 0), hard core (0 <= hc <= r).
-    T, font, rng
+    T, font, rng, max_steps
         As for :func:`two_category_exemplar`.
 
     Returns
@@ -522,7 +530,7 @@ def regularity_exemplar(
     hc = positive_number(hc, "hc", allow_zero=True)
     if hc > r:
         raise ValueError(f"hc = {hc} exceeds r = {r}: a hard core must not exceed its radius")
-    frame, T = _frame(window), _steps(T)
+    frame, T = _frame(window), _steps(T, max_steps)
     glyphs, pattern, truth = _simulate([beta], gamma, r, hc, chars, chars, (size,), frame, T, font, rng)
     description = f"{char!r} glyphs, Strauss hard-core gamma={gamma:g} (0 regular .. 1 random), rmh T={T}"
     return _exemplar(glyphs, pattern, frame, truth, description)
@@ -644,6 +652,7 @@ def hatching_exemplar(
     T: int = 100_000,
     font: str = "futural",
     rng=None,
+    max_steps: int = MAX_STEPS,
 ) -> Exemplar:
     """Long thin strokes, roughly parallel: a hatching (Hurtut Fig. 9 right).
 
@@ -670,7 +679,7 @@ def hatching_exemplar(
     beta, gamma, r, hc : float
         Strauss hard-core model of the positions: beta > 0, gamma in [0, 1], r > 0,
         0 <= hc <= r.
-    T, font, rng
+    T, font, rng, max_steps
         As for :func:`two_category_exemplar`.
 
     Returns
@@ -688,7 +697,7 @@ def hatching_exemplar(
     hc = positive_number(hc, "hc", allow_zero=True)
     if hc > r:
         raise ValueError(f"hc = {hc} exceeds r = {r}: a hard core must not exceed its radius")
-    frame, T = _frame(window), _steps(T)
+    frame, T = _frame(window), _steps(T, max_steps)
     rng = as_generator(rng)
     glyphs, pattern, truth = _simulate([beta], gamma, r, hc, chars, chars, (length,), frame, T, font, rng,
                                        rotated=True)
@@ -806,6 +815,7 @@ def near_identical_exemplar(
     T: int = 100_000,
     font: str = "futural",
     rng=None,
+    max_steps: int = MAX_STEPS,
 ) -> Exemplar:
     """Small glyphs that differ only slightly, arranged as one group (Hurtut Fig. 9 left).
 
@@ -832,7 +842,7 @@ def near_identical_exemplar(
     beta, gamma, r, hc : float
         The unmarked Strauss hard-core model: beta > 0, gamma in [0, 1], r > 0,
         0 <= hc <= r.
-    T, font, rng
+    T, font, rng, max_steps
         As for :func:`two_category_exemplar`.
 
     Returns
@@ -856,7 +866,7 @@ def near_identical_exemplar(
     hc = positive_number(hc, "hc", allow_zero=True)
     if hc > r:
         raise ValueError(f"hc = {hc} exceeds r = {r}: a hard core must not exceed its radius")
-    frame, T = _frame(window), _steps(T)
+    frame, T = _frame(window), _steps(T, max_steps)
     glyphs, pattern, truth = _simulate(beta * proportions, gamma, r, hc, chars, chars, (size,) * m, frame, T,
                                        font, rng)
     truth.update(proportions=proportions.tolist(), perceptual_groups=1, unmarked_beta=beta)
@@ -906,7 +916,7 @@ def amacrine_exemplar(*, chars=("x", "o"), size: float = 0.02, font: str = "futu
     """
     chars = _chars(chars, count=2)
     size = positive_number(size, "size")
-    fixture = _repository_fixture() if path is None else Path(path)
+    fixture = _repository_fixture() if path is None else file_path(path)
     if not fixture.is_file():
         raise FileNotFoundError(
             f"the amacrine fixture {fixture} is missing: amacrine_exemplar reads spatstat's pattern from the "

@@ -53,6 +53,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from paperlib.geometry.curves import MAX_RESAMPLE_POINTS
 from paperlib.geometry import (
     drop_repeated_vertices,
     oriented_ccw,
@@ -122,7 +123,7 @@ def _outer_outline(name: str) -> np.ndarray:
     return outer
 
 
-def glyph_outline(name: str, n_points: int | None = None) -> np.ndarray:
+def glyph_outline(name: str, n_points: int | None = None, *, max_points: int = MAX_RESAMPLE_POINTS) -> np.ndarray:
     """The outer boundary of one glyph as a closed counter-clockwise curve.
 
     Parameters
@@ -137,6 +138,9 @@ def glyph_outline(name: str, n_points: int | None = None) -> np.ndarray:
         simple polygon for ``n_points >= 32`` (tested up to 1000); coarser
         resamplings may cut across thin parts (``floral_heart`` self-intersects at
         12 points).
+    max_points : int, optional
+        Budget: the largest ``n_points`` allowed (default
+        :data:`paperlib.geometry.curves.MAX_RESAMPLE_POINTS`, 10**7).
 
     Returns
     -------
@@ -154,11 +158,11 @@ def glyph_outline(name: str, n_points: int | None = None) -> np.ndarray:
     outline = _outer_outline(name)
     if n_points is None:
         return outline
-    resampled = resample_closed_curve(outline, n_points)
+    resampled = resample_closed_curve(outline, n_points, max_points=max_points)
     resampled.setflags(write=False)
     return resampled
 
 
-def glyph_outlines(n_points: int | None = None) -> dict[str, np.ndarray]:
+def glyph_outlines(n_points: int | None = None, *, max_points: int = MAX_RESAMPLE_POINTS) -> dict[str, np.ndarray]:
     """All outlines, keyed by name in sorted order; see :func:`glyph_outline`."""
-    return {name: glyph_outline(name, n_points) for name in outline_names()}
+    return {name: glyph_outline(name, n_points, max_points=max_points) for name in outline_names()}

@@ -113,7 +113,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, positive_number
 from paperlib.geometry import resample_closed_curve, resample_open_curve
 
 __all__ = ["LEAF_KINDS", "MAX_TREMOR", "MAX_WOBBLE", "hand_drawn_curve", "leaf_outline", "leaf_outlines"]
@@ -152,9 +152,16 @@ MAX_WOBBLE = 0.5
 _BLOB_MIN_RADIUS = 0.3
 
 
-def _check_n_points(n_points) -> int:
+#: Default budget of the generators here (``max_points``): points drawn by one call, 2**22 (~4.2 M).
+MAX_POINTS = 2**22
+
+
+def _check_n_points(n_points, max_points, curves: int = 1, drawn: int = 0) -> int:
+    """``n_points`` checked, and ``curves`` curves of ``max(n_points, drawn)`` points against the budget
+    (``drawn``: the points a curve is built from before its resampling)."""
     if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < MIN_POINTS:
         raise ValueError(f"n_points must be an integer >= {MIN_POINTS}, got {n_points!r}")
+    check_budget(curves * max(int(n_points), drawn), budget(max_points, "max_points"), "max_points", "curve points")
     return int(n_points)
 
 
@@ -431,7 +438,7 @@ def _leaf(kind: str, rng: np.random.Generator, n_points: int) -> np.ndarray:
     return resample_closed_curve(leaf, n_points)
 
 
-def leaf_outline(kind: str, *, rng=None, n_points: int = 512) -> np.ndarray:
+def leaf_outline(kind: str, *, rng=None, n_points: int = 512, max_points: int = MAX_POINTS) -> np.ndarray:
     """One SYNTHETIC leaf outline of the given kind, a stand-in for the paper's leaf training set.
 
     The outline imitates a real leaf form (see the table in :mod:`paperlib.datasets.sketches`):
@@ -447,6 +454,8 @@ def leaf_outline(kind: str, *, rng=None, n_points: int = 512) -> np.ndarray:
         Seed of the leaf's variation (proportions, tooth and lobe counts and depths, asymmetry).
     n_points : int, optional
         Number of points (>= 16), equally spaced in arc length. Default 512.
+    max_points : int, optional
+        Budget: the largest ``n_points`` (default :data:`MAX_POINTS`).
 
     Returns
     -------
@@ -473,11 +482,11 @@ def leaf_outline(kind: str, *, rng=None, n_points: int = 512) -> np.ndarray:
     whose features are "well localized in time" (arc length).
     """
     kind = _check_kind(kind)
-    n_points = _check_n_points(n_points)
+    n_points = _check_n_points(n_points, max_points, drawn=2 * _HALF_SAMPLES)
     return _leaf(kind, as_generator(rng), n_points)
 
 
-def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512) -> list[np.ndarray]:
+def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512, max_points: int = MAX_POINTS) -> list[np.ndarray]:
     """A SYNTHETIC leaf training set: ``n`` outlines cycling over :data:`LEAF_KINDS`.
 
     Outline ``i`` is ``leaf_outline(LEAF_KINDS[i % 5], rng=children[i], n_points=n_points)``, where
@@ -492,6 +501,9 @@ def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512) -> list[np.ndar
         Seed of the whole set.
     n_points : int, optional
         Points per outline (>= 16). Default 512.
+    max_points : int, optional
+        Budget: the most points of the whole set, ``n * max(n_points, 4096)`` (each outline is drawn
+        with 4096 points before its resampling; default :data:`MAX_POINTS`), checked before drawing.
 
     Returns
     -------
@@ -509,7 +521,7 @@ def leaf_outlines(n: int = 14, *, rng=None, n_points: int = 512) -> list[np.ndar
     """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
-    n_points = _check_n_points(n_points)
+    n_points = _check_n_points(n_points, max_points, int(n), drawn=2 * _HALF_SAMPLES)
     children = as_generator(rng).spawn(int(n))
     return [_leaf(LEAF_KINDS[i % len(LEAF_KINDS)], child, n_points) for i, child in enumerate(children)]
 
@@ -598,6 +610,7 @@ def hand_drawn_curve(
     rng=None,
     tremor: float = 0.004,
     wobble: float = 0.2,
+    max_points: int = MAX_POINTS,
 ) -> np.ndarray:
     """A SYNTHETIC hand-drawn-like sketch: a smooth random blob or stroke with a slight hand tremor.
 
@@ -629,6 +642,8 @@ def hand_drawn_curve(
         shrunk where they would take the radius below 0.3 of the mean), for a stroke the RMS of
         its heading about its mean direction, in radians. Default 0.2; 0 gives a circle or a
         straight segment (plus the tremor).
+    max_points : int, optional
+        Budget: the largest ``n_points`` (default :data:`MAX_POINTS`).
 
     Returns
     -------
@@ -647,7 +662,7 @@ def hand_drawn_curve(
     ----------
     Simhon & Dudek (2001), Figures 3, 4 and 6 (left: "hand drawn sketches").
     """
-    n_points = _check_n_points(n_points)
+    n_points = _check_n_points(n_points, max_points)
     if not isinstance(closed, (bool, np.bool_)):
         raise ValueError(f"closed must be True or False, got {closed!r}")
     size = positive_number(size, "size")

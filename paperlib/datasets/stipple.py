@@ -72,7 +72,7 @@ import math
 import numba
 import numpy as np
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, positive_number
 
 __all__ = ["andrews_like_tones", "stipple_tone_sheet", "stipple_tone_texture"]
 
@@ -80,6 +80,9 @@ __all__ = ["andrews_like_tones", "stipple_tone_sheet", "stipple_tone_texture"]
 LIGHT_MAX = 0.3
 #: Smallest texture side accepted, in pixels.
 MIN_SIZE = 16
+#: Default budget of the generators here (``max_pixels``): pixels drawn by one call, 2**23 (~8.4 M, about
+#: ten seconds); the paper's sizes (a 256 x 256 texture, eight of them in a sheet) use 2**16 to 2**19.
+MAX_PIXELS = 2**23
 #: Hard-core distance as a fraction of the mean spacing between marks (random sequential
 #: adsorption jams near 0.83, so 0.7 stays reachable while making the placement regular).
 HARD_CORE = 0.7
@@ -112,6 +115,10 @@ def _check_hard_core(hard_core):
             f"(low, high) pair of them, got {hard_core!r}"
         )
     return tuple(values) if pair else values[0]
+
+
+def _check_pixels(pixels: int, max_pixels) -> None:
+    check_budget(pixels, budget(max_pixels, "max_pixels"), "max_pixels", "pixels")
 
 
 def _check_size(size, name: str, minimum: int) -> int:
@@ -280,7 +287,7 @@ def _regime(tone: float, light_max: float, dark_min: float) -> str:
 
 
 def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max=LIGHT_MAX, dark_min=None,
-                         hard_core=HARD_CORE, return_truth=False):
+                         hard_core=HARD_CORE, return_truth=False, max_pixels=MAX_PIXELS):
     """Generate one SYNTHETIC hand-drawn-like stipple texture of a given tone.
 
     Parameters
@@ -336,6 +343,7 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
     """
     tone = _check_tone(tone)
     size = _check_size(size, "size", MIN_SIZE)
+    _check_pixels(size * size, max_pixels)
     mark_radius = positive_number(mark_radius, "mark_radius")
     if mark_radius < 1.0:
         raise ValueError(f"mark_radius must be at least 1 pixel, got {mark_radius!r}")
@@ -381,7 +389,7 @@ ANDREWS_LIKE_INK = (0.025, 0.06, 0.12, 0.2, 0.35, 0.5, 0.7, 0.85)
 ANDREWS_LIKE_SETTINGS = {"mark_radius": 3.3, "hard_core": (0.25, 0.8), "light_max": 0.25, "dark_min": 0.6}
 
 
-def andrews_like_tones(size=256, rng=None, *, return_truth=False):
+def andrews_like_tones(size=256, rng=None, *, return_truth=False, max_pixels=MAX_PIXELS):
     """Eight SYNTHETIC tone textures calibrated to what the paper reports of Andrews' tone map.
 
     Kim et al. 2009 give the geometry of one 256 x 256 Andrews tone texture (section 3.5:
@@ -402,14 +410,19 @@ def andrews_like_tones(size=256, rng=None, *, return_truth=False):
         Random source; a seed fixes the textures bit for bit.
     return_truth : bool, optional
         Also return each texture's truth dict (:func:`stipple_tone_texture`).
+    max_pixels : int, optional
+        Budget: the most pixels of the eight textures together (default :data:`MAX_PIXELS`).
 
     Returns
     -------
     list of ndarray of bool, or (list, list of dict)
         Tones 1-8, lightest first, ``True`` = ink.
     """
+    size = _check_size(size, "size", MIN_SIZE)
+    _check_pixels(len(ANDREWS_LIKE_INK) * size * size, max_pixels)
     generator = as_generator(rng)
-    made = [stipple_tone_texture(ink, size, generator, return_truth=True, **ANDREWS_LIKE_SETTINGS)
+    made = [stipple_tone_texture(ink, size, generator, return_truth=True, max_pixels=max_pixels,
+                                 **ANDREWS_LIKE_SETTINGS)
             for ink in ANDREWS_LIKE_INK]
     textures, truths = [texture for texture, _ in made], [truth for _, truth in made]
     return (textures, truths) if return_truth else textures
@@ -427,7 +440,8 @@ def _dither_mask(height, width, cell, rng):
     return np.repeat(np.repeat(cells, cell, axis=0), cell, axis=1)[:height, :width]
 
 
-def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8, mark_radius=2.0):
+def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8, mark_radius=2.0,
+                       max_pixels=MAX_PIXELS):
     """A SYNTHETIC tone-map sheet: ``n_tones`` stipple patches of increasing darkness in a row.
 
     Parameters
@@ -449,6 +463,8 @@ def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8,
         Mean mark radius (default 2, smaller than a single texture's 3): a sheet stands for a
         whole drawing cut into N = 30-32 px blocks (Fig. 4), and smaller dots make each block's
         average steady (standard deviation about 0.02 in ink at N = 32).
+    max_pixels : int, optional
+        Budget: the most pixels of the sheet, ``n_tones * block**2`` (default :data:`MAX_PIXELS`).
 
     Returns
     -------
@@ -482,6 +498,7 @@ def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8,
     if transition % 2:
         raise ValueError(f"transition must be even, got {transition}")
     block = _check_size(block, "block", max(MIN_SIZE, 2 * transition))
+    _check_pixels(n_tones * block * block, max_pixels)
     cell = _check_size(cell, "cell", 1)
     mark_radius = positive_number(mark_radius, "mark_radius")
     if mark_radius < 1.0:

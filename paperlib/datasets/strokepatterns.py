@@ -86,7 +86,7 @@ import numpy as np
 import shapely
 from matplotlib.colors import to_hex
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, positive_number
 from paperlib.geometry import Stroke
 
 __all__ = [
@@ -105,6 +105,9 @@ __all__ = [
 
 #: Pen width of the thin (pen-and-ink) strokes.
 PEN_WIDTH = 0.08
+#: Default budget of every generator here (``max_elements``): the most elements of an exemplar, checked
+#: before drawing (a region's count is estimated from its area; the 2D generators compare all pairs).
+MAX_ELEMENTS = 5_000
 #: 1D patterns: epsilon as a fraction of the spacing (neighbouring hatches are a spacing apart).
 _EPSILON_1D = 0.2
 #: Jitter of 1D element positions along the path, as a fraction of the spacing.
@@ -289,10 +292,18 @@ def _region_centers(width: float, height: float, spacing: float, rng, *,
     return lattice + _disc_jitter(len(lattice), _LATTICE_JITTER * spacing, rng), cells
 
 
-def _region(width, height) -> tuple[float, float, object]:
-    """Validated region size and the rectangle ``shapely.box(0, 0, width, height)``."""
+def _region(width, height, spacing: float, max_elements) -> tuple[float, float, object]:
+    """Validated region size and the rectangle ``shapely.box(0, 0, width, height)``.
+
+    The region must hold at most ``max_elements`` lattice sites ``spacing`` apart (hexagonal rows, the
+    denser lattice), counted before any is drawn.
+    """
     width = positive_number(width, "width")
     height = positive_number(height, "height")
+    sites = (width / spacing + 1.0) * (height / (spacing * math.sqrt(3.0) / 2.0) + 1.0)
+    needed = math.ceil(sites) if math.isfinite(sites) else sites
+    check_budget(needed, budget(max_elements, "max_elements"), "max_elements",
+                 f"elements (lattice sites {spacing:g} apart in a {width:g} x {height:g} region)")
     return width, height, shapely.box(0.0, 0.0, width, height)
 
 
@@ -332,8 +343,10 @@ def _horizontal_path(n: int, spacing: float) -> np.ndarray:
 # --------------------------------------------------------------------------- 1D patterns (Figure 6)
 
 
-def _check_1d(n_elements, spacing) -> tuple[int, float]:
-    return _count(n_elements, "n_elements", 2), positive_number(spacing, "spacing")
+def _check_1d(n_elements, spacing, max_elements) -> tuple[int, float]:
+    n = _count(n_elements, "n_elements", 2)
+    check_budget(n, budget(max_elements, "max_elements"), "max_elements", "elements")
+    return n, positive_number(spacing, "spacing")
 
 
 def _sketchy_hatch(length: float, angle: float, center, spacing: float, rng) -> list:
@@ -357,7 +370,8 @@ def _dashed_hatch(length: float, angle: float, center, spacing: float, rng) -> l
     return [_stroke(dash, angle, center, PEN_WIDTH * spacing) for dash in dashes]
 
 
-def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=None) -> StrokePatternExemplar:
+def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=None,
+                              max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Curved near-vertical hatches drawn with sketchy multi-stroke gestures along a path (synthetic).
 
     Each hatch is a gentle arc tilted at most 2 degrees from vertical, drawn as 2-4 overlapping strokes
@@ -377,6 +391,8 @@ def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=Non
         Hatch length, between 1.5 and 5 spacings (longer bent hatches would crowd their neighbours,
         shorter dashes would be close enough for proximity).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -392,7 +408,7 @@ def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=Non
     ----------
     Barla et al. 2006, Figure 1 (sketchy hatching), Figure 2 (proximity, continuation), Figure 6 a.
     """
-    n, spacing = _check_1d(n_elements, spacing)
+    n, spacing = _check_1d(n_elements, spacing, max_elements)
     length = _between(length, "length", 1.5 * spacing, 5.0 * spacing)
     rng = as_generator(rng)
     arcs = _path_arcs(n, spacing, _ARC_JITTER, rng)
@@ -409,7 +425,8 @@ def sketchy_hatching_exemplar(n_elements=24, *, spacing=1.0, length=3.0, rng=Non
 
 
 def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertical_jitter=0.4,
-                               rng=None) -> StrokePatternExemplar:
+                               rng=None,
+                               max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Straight vertical hatches, evenly spaced, with random vertical offsets (synthetic).
 
     Hatch ``i`` is one straight stroke centred at ``((i + 0.5) * spacing, v_i)`` with ``v_i`` uniform in
@@ -427,6 +444,8 @@ def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertic
     vertical_jitter : float
         Largest vertical offset of a hatch centre (>= 0).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -442,7 +461,7 @@ def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertic
     ----------
     Barla et al. 2006, Figure 6 b and section 3.3 (position variation).
     """
-    n, spacing = _check_1d(n_elements, spacing)
+    n, spacing = _check_1d(n_elements, spacing, max_elements)
     length = positive_number(length, "length")
     vertical_jitter = positive_number(vertical_jitter, "vertical_jitter", allow_zero=True)
     rng = as_generator(rng)
@@ -458,7 +477,8 @@ def jittered_hatching_exemplar(n_elements=30, *, spacing=1.0, length=2.5, vertic
 
 
 def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=0.0,
-                               rng=None) -> StrokePatternExemplar:
+                               rng=None,
+                               max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Single straight strokes whose orientation, length, pen width or colour ramps along the path (synthetic).
 
     The chosen parameter is a linear, increasing function of the designed arc length ``(i + 0.5) *
@@ -491,6 +511,8 @@ def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=
         Standard deviation of the noise on the ramped parameter, in ramp steps (>= 0, at most 3); values are
         clipped to the ramp's range.
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -509,7 +531,7 @@ def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=
     """
     if parameter not in _GRADIENT_RANGES:
         raise ValueError(f"parameter must be one of {sorted(_GRADIENT_RANGES)}, got {parameter!r}")
-    n, spacing = _check_1d(n_elements, spacing)
+    n, spacing = _check_1d(n_elements, spacing, max_elements)
     jitter = _between(jitter, "jitter", 0.0, 3.0)
     rng = as_generator(rng)
     low, high = _GRADIENT_RANGES[parameter]
@@ -546,7 +568,8 @@ def _straight_strokes_1d(angles, lengths, widths, colors, spacing: float, rng, d
 
 
 def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter=1.5, spacing=1.0,
-                           rng=None) -> StrokePatternExemplar:
+                           rng=None,
+                           max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Straight strokes whose orientation swings back and forth along the path, gradually (synthetic).
 
     Stroke ``i`` is turned ``90 + amplitude sin(2 pi i / period)`` degrees from x, plus Gaussian noise of
@@ -565,6 +588,8 @@ def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter
     spacing : float
         Designed distance between neighbouring strokes (> 0); ``epsilon = 0.2 * spacing``.
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -575,7 +600,7 @@ def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter
     ----------
     Barla et al. 2006, Figure 6 c (gradual changes of orientation along a path).
     """
-    n, spacing = _check_1d(n_elements, spacing)
+    n, spacing = _check_1d(n_elements, spacing, max_elements)
     period = _between(period, "period", 2.0, 1e6)
     amplitude = _between(amplitude, "amplitude", 0.0, 85.0)
     jitter = _between(jitter, "jitter", 0.0, 10.0)
@@ -587,7 +612,8 @@ def wave_hatching_exemplar(n_elements=40, *, period=16.0, amplitude=35.0, jitter
                                 f"with a period of {period:g} strokes (jitter {jitter:g} deg)")
 
 
-def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), rng=None) -> StrokePatternExemplar:
+def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), rng=None,
+                               max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Thick, slightly wavy brush strokes whose colours alternate along the path (synthetic).
 
     Stroke ``i`` (one period of a cosine wave of amplitude 0.03, length 1.2 +- 5 %, pen width 0.25,
@@ -601,6 +627,8 @@ def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), 
     colors : sequence of str
         At least two SVG colours, used in turn.
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -616,7 +644,7 @@ def alternating_color_exemplar(n_elements=24, *, colors=("#c0392b", "#1f618d"), 
     ----------
     Barla et al. 2006, Figure 6 f (colour pattern) and section 3.1 (colour measure).
     """
-    n, spacing = _check_1d(n_elements, 1.0)
+    n, spacing = _check_1d(n_elements, 1.0, max_elements)
     colors = _colors(colors, "colors", 2)
     rng = as_generator(rng)
     arcs = _path_arcs(n, spacing, _ARC_JITTER, rng)
@@ -717,7 +745,8 @@ def _patches(centers, width: float, height: float, spacing: float, patch_size: f
 
 
 def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", patch_size=4.0, width=12.0,
-                  height=12.0, rng=None) -> StrokePatternExemplar:
+                  height=12.0, rng=None,
+                  max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Straight bars in several directions filling a region, aligned in patches (synthetic).
 
     Centres on a hexagonal lattice of spacing 1.25 jittered by up to 0.0625 (about 100 bars in the
@@ -747,6 +776,8 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", pat
     width, height : float
         Size of the region ``shapely.box(0, 0, width, height)`` (> 0, room for at least 3 bars).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -770,7 +801,7 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", pat
         raise ValueError(f"directions_deg needs at least one finite angle, got {directions_deg!r}")
     structure = _structure(structure, ("patches", "random"))
     patch_size = positive_number(patch_size, "patch_size")
-    width, height, region = _region(width, height)
+    width, height, region = _region(width, height, 1.25, max_elements)
     rng = as_generator(rng)
     centers, _ = _region_centers(width, height, 1.25, rng)
     n = len(centers)
@@ -788,7 +819,8 @@ def bars_exemplar(*, directions_deg=(0.0, 60.0, 120.0), structure="patches", pat
                                  "(stand-in for Barla 2006, Fig. 7a)")
 
 
-def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
+def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None,
+                   max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Water drops among short hatches in a region, each drop ringed by hatches (synthetic).
 
     Centres on a hexagonal lattice of spacing 1.25 jittered by up to 0.0625. Each site is a drop
@@ -816,6 +848,8 @@ def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> 
     width, height : float
         Size of the region (> 0, room for at least 3 elements).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -832,7 +866,7 @@ def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> 
     Barla et al. 2006, Figure 7 b ("elements of various nature (water drops, hatches)") and section 4.
     """
     structure = _structure(structure, ("ringed", "random"))
-    width, height, region = _region(width, height)
+    width, height, region = _region(width, height, 1.25, max_elements)
     rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.25, rng)
     n = len(centers)
@@ -861,7 +895,8 @@ def drops_exemplar(*, structure="ringed", width=12.0, height=12.0, rng=None) -> 
 
 
 def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="bands", band_rows=2, width=12.0,
-                     height=12.0, rng=None) -> StrokePatternExemplar:
+                     height=12.0, rng=None,
+                     max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Small flowers, each drawn with five petal loops and a heart, in colour bands (synthetic).
 
     Centres on a hexagonal lattice of spacing 1.3 jittered by up to 0.065 (about 90 flowers in the
@@ -893,6 +928,8 @@ def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="ban
     width, height : float
         Size of the region (> 0, room for at least 3 flowers).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -912,7 +949,7 @@ def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="ban
     colors = _colors(colors, "colors", 1)
     structure = _structure(structure, ("bands", "random"))
     band_rows = _count(band_rows, "band_rows", 1)
-    width, height, region = _region(width, height)
+    width, height, region = _region(width, height, 1.3, max_elements)
     rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.3, rng)
     n = len(centers)
@@ -932,7 +969,8 @@ def flowers_exemplar(*, colors=("#c0392b", "#d4ac0d", "#7d3c98"), structure="ban
                                  f"{len(colors)} colours {layout} (stand-in for Barla 2006, Fig. 7c)")
 
 
-def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
+def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None,
+                           max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Two kinds of hatches alternating in a checkerboard (synthetic).
 
     Centres on a square lattice of spacing 1.2 jittered by up to 0.06; sites of even parity carry an
@@ -948,6 +986,8 @@ def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatter
     width, height : float
         Size of the region (> 0, room for at least 3 elements).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -963,7 +1003,7 @@ def two_hatchings_exemplar(*, width=12.0, height=12.0, rng=None) -> StrokePatter
     ----------
     Barla et al. 2006, Figure 7 d ("alternating two different kinds of elements") and section 4.
     """
-    width, height, region = _region(width, height)
+    width, height, region = _region(width, height, 1.2, max_elements)
     rng = as_generator(rng)
     centers, cells = _region_centers(width, height, 1.2, rng, hexagonal=False)
     n = len(centers)
@@ -1018,7 +1058,8 @@ def _clustered_centers(n: int, width: float, height: float, min_distance: float,
                      f"{width:g} x {height:g} region: lower n_elements or enlarge the region")
 
 
-def irregular_exemplar(n_elements=100, *, width=12.0, height=12.0, rng=None) -> StrokePatternExemplar:
+def irregular_exemplar(n_elements=100, *, width=12.0, height=12.0, rng=None,
+                       max_elements=MAX_ELEMENTS) -> StrokePatternExemplar:
     """Small single-stroke marks at clearly non-uniform, clustered positions (synthetic).
 
     Positions come from dart throwing with a hard core of 0.5 from a clustered density (nine candidates
@@ -1033,6 +1074,8 @@ def irregular_exemplar(n_elements=100, *, width=12.0, height=12.0, rng=None) -> 
     width, height : float
         Size of the region (> 0).
     rng : None, int or numpy.random.Generator
+    max_elements : int, optional
+        Budget: the most elements (default :data:`MAX_ELEMENTS`), checked before drawing.
 
     Returns
     -------
@@ -1049,7 +1092,8 @@ def irregular_exemplar(n_elements=100, *, width=12.0, height=12.0, rng=None) -> 
     Barla et al. 2006, Figure 7 e and section 3.3 (position variation).
     """
     n = _count(n_elements, "n_elements", 3)
-    width, height, region = _region(width, height)
+    check_budget(n, budget(max_elements, "max_elements"), "max_elements", "elements")
+    width, height, region = _region(width, height, 4.0, max_elements)  # a clump parent per 16 square units
     rng = as_generator(rng)
     centers = _clustered_centers(n, width, height, 0.5, rng)
     centers = centers[_drawing_order(centers, 1.0)]

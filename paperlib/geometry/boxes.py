@@ -53,6 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._checks import finite_array
 from .strokes import Element, StackedStrokes, as_points, stack_strokes
 
 __all__ = ["OrientedBox", "OrientedBoxes", "oriented_bounding_box", "oriented_bounding_boxes"]
@@ -121,14 +122,14 @@ class OrientedBox:
     angle: float
 
     def __post_init__(self):
-        center = _read_only(as_points(np.reshape(self.center, (1, 2)), name="box center")[0])
-        half_lengths = _read_only(as_points(np.reshape(self.half_lengths, (1, 2)), name="box half_lengths")[0])
-        angle = float(self.angle)
+        center = _read_only(finite_array(self.center, "box center", shape=(2,)))
+        half_lengths = _read_only(finite_array(self.half_lengths, "box half_lengths", shape=(2,)))
+        angle = float(finite_array(self.angle, "box angle", ndim=0))
         if not 0.0 <= angle < np.pi:
             raise ValueError(f"box angle must lie in [0, pi), got {angle!r}")
         if not half_lengths[0] >= half_lengths[1] >= 0:
             raise ValueError(f"box half_lengths must satisfy major >= minor >= 0, got {half_lengths.tolist()}")
-        axes = _read_only(self.axes)
+        axes = _read_only(finite_array(self.axes, "box axes"))
         if axes.shape != (2, 2) or not np.allclose(axes, _rotation(angle), rtol=0, atol=1e-9):
             raise ValueError("box axes must be the unit columns [major, minor] of the rotation by angle")
         for name, value in (("center", center), ("axes", axes), ("half_lengths", half_lengths), ("angle", angle)):

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._checks import integer_at_least, point_array
+from .._checks import budget, check_budget, integer_at_least, point_array
 from .strokes import as_points
 
 __all__ = [
+    "MAX_RESAMPLE_POINTS",
     "drop_repeated_vertices",
     "oriented_ccw",
     "resample_closed_curve",
@@ -21,6 +22,15 @@ __all__ = [
     "ring_centroid",
     "signed_area",
 ]
+
+#: Default budget of the resamplers (``max_points``): the most output points, checked before allocating.
+MAX_RESAMPLE_POINTS = 10**7
+
+
+def _checked_count(n_points, minimum: int, max_points) -> int:
+    n_points = integer_at_least(n_points, "n_points", minimum)
+    check_budget(n_points, budget(max_points, "max_points"), "max_points", "resampled points")
+    return n_points
 
 
 def _shoelace_terms(ring: np.ndarray) -> np.ndarray:
@@ -85,7 +95,7 @@ def oriented_ccw(ring) -> np.ndarray:
     return ring if signed_area(ring) >= 0 else np.concatenate([ring[:1], ring[:0:-1]])
 
 
-def resample_closed_curve(ring, n_points: int) -> np.ndarray:
+def resample_closed_curve(ring, n_points: int, *, max_points: int = MAX_RESAMPLE_POINTS) -> np.ndarray:
     """Resample a ring at ``n_points`` points equally spaced in arc length.
 
     Parameters
@@ -94,6 +104,8 @@ def resample_closed_curve(ring, n_points: int) -> np.ndarray:
         Vertices of the closed curve, without a repeated end point.
     n_points : int
         Number of output points (>= 3).
+    max_points : int, optional
+        Budget: the largest ``n_points`` allowed (default :data:`MAX_RESAMPLE_POINTS`, 10**7).
 
     Returns
     -------
@@ -105,27 +117,28 @@ def resample_closed_curve(ring, n_points: int) -> np.ndarray:
     Raises
     ------
     ValueError
-        If ``n_points`` is not an integer >= 3 or the curve has zero length.
+        If ``n_points`` is not an integer >= 3 (or above ``max_points``) or the curve has zero length.
     """
-    n_points = integer_at_least(n_points, "n_points", 3)
+    n_points = _checked_count(n_points, 3, max_points)
     ring = as_points(ring, name="ring", min_points=2)
     closed = np.vstack([ring, ring[:1]])
     arc = _arc_lengths(closed)
     return _points_at(closed, arc, np.arange(n_points) * (arc[-1] / n_points))
 
 
-def resample_open_curve(points, n_points: int) -> np.ndarray:
+def resample_open_curve(points, n_points: int, *, max_points: int = MAX_RESAMPLE_POINTS) -> np.ndarray:
     """Resample an open polyline at ``n_points`` points equally spaced in arc length.
 
     The first and last output points are the polyline's end points; the others lie on it
-    at arc lengths ``k L / (n_points - 1)``.
+    at arc lengths ``k L / (n_points - 1)``. ``max_points`` is the budget of
+    :func:`resample_closed_curve`.
 
     Raises
     ------
     ValueError
-        If ``n_points`` is not an integer >= 2 or the polyline has zero length.
+        If ``n_points`` is not an integer >= 2 (or above ``max_points``) or the polyline has zero length.
     """
-    n_points = integer_at_least(n_points, "n_points", 2)
+    n_points = _checked_count(n_points, 2, max_points)
     points = as_points(points, name="points", min_points=2)
     arc = _arc_lengths(points)
     return _points_at(points, arc, np.linspace(0.0, arc[-1], n_points))

@@ -92,6 +92,8 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
+from paperlib._checks import check_flag, finite_array, instance_of, integer_at_least, positive_number
+
 from .models import MultiStraussHard, interaction_counts, interaction_pairs
 from .pattern import PointPattern, require_distinct
 from .quadrature import QuadratureScheme, default_nd, quadscheme
@@ -334,6 +336,8 @@ def csr_L_sd(area: float, n_a: int, n_b: int, same_type: bool) -> float:
     Var K = pi r^2 |W| / (n_a n_b). By the delta method (dL/dK = 1 / (2 pi r) at K = pi r^2),
     Var L = |W| / (2 pi n^2) and |W| / (4 pi n_a n_b): constant in r (edge effects ignored).
     """
+    area = positive_number(area, "area")
+    n_a, n_b, same_type = integer_at_least(n_a, "n_a", 1), integer_at_least(n_b, "n_b", 1), check_flag(same_type, "same_type")
     return math.sqrt(area / ((2.0 if same_type else 4.0) * math.pi * n_a * n_b))
 
 
@@ -523,14 +527,19 @@ def fine_nd(pattern: PointPattern, r, hc) -> int:
     -------
     int
     """
-    base = default_nd(pattern.n)
+    base = default_nd(instance_of(pattern, PointPattern, "pattern").n)
     cap = min(MAX_FINE_ND, math.isqrt(MAX_FINE_DUMMIES // pattern.n_types))
-    r, hc = np.asarray(r, dtype=np.float64), np.asarray(hc, dtype=np.float64)
+    r, hc = finite_array(r, "r"), finite_array(hc, "hc")
+    try:
+        np.broadcast_shapes(r.shape, hc.shape)
+    except ValueError:
+        raise ValueError(f"r and hc must have one shape (n_types, n_types), got {r.shape} and {hc.shape}") from None
     scales = np.concatenate([np.ravel(hc[hc > 0]), np.ravel((r - hc)[r > hc])])
     if scales.size == 0:
         return base
     side = max(pattern.window.width, pattern.window.height)
-    wanted = base * math.ceil(DUMMIES_PER_SCALE * side / scales.min() / base)
+    ratio = DUMMIES_PER_SCALE * side / scales.min() / base
+    wanted = base * math.ceil(ratio) if math.isfinite(ratio) else cap  # a scale tiny beside the window: the cap
     return max(base, min(cap, wanted))
 
 

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from paperlib._checks import finite_array, instance_of, integer_array
+
 __all__ = ["MultiStraussHard", "PairDistance", "Poisson", "Strauss", "StraussHard", "interaction_counts",
            "interaction_pairs"]
 
@@ -170,10 +172,9 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     inside_core : ndarray of bool
         ``d < hc`` (``d <= hc`` with ``hc > 0`` when ``model.closed``).
     """
-    locations = np.asarray(locations, dtype=np.float64).reshape(-1, 2)
-    types = np.asarray(types, dtype=np.int64).reshape(-1)
-    pattern_points = np.asarray(pattern_points, dtype=np.float64).reshape(-1, 2)
-    pattern_marks = np.asarray(pattern_marks, dtype=np.int64).reshape(-1)
+    instance_of(model, MultiStraussHard, "model")
+    locations, pattern_points = _flat_points(locations, "locations"), _flat_points(pattern_points, "pattern_points")
+    types, pattern_marks = integer_array(types, "types").reshape(-1), integer_array(pattern_marks, "pattern_marks").reshape(-1)
     k, m = len(locations), model.n_types
     if types.shape != (k,) or pattern_marks.shape != (len(pattern_points),):
         raise ValueError("one type per location and one mark per pattern point are needed")
@@ -184,13 +185,13 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     if k == 0 or len(pattern_points) == 0:
         empty = np.zeros(0, dtype=np.int64)
         return empty, empty, np.zeros(0, bool), np.zeros(0, bool)
-    padding = 0.0 if pair_distance is None else pair_distance.padding
+    padding = 0.0 if pair_distance is None else instance_of(pair_distance, PairDistance, "pair_distance").padding
     pairs = cKDTree(locations).sparse_distance_matrix(cKDTree(pattern_points), model.reach + padding,
                                                       output_type="ndarray")
     # the "ndarray" output keeps pairs at distance 0 (dummy copies of data points need them)
     i, j, d = pairs["i"].astype(np.int64), pairs["j"].astype(np.int64), pairs["v"]
     if exclude is not None:
-        exclude = np.asarray(exclude, dtype=np.int64).reshape(-1)
+        exclude = integer_array(exclude, "exclude").reshape(-1)
         if exclude.shape != (k,):
             raise ValueError(f"exclude must have one entry per location ({k}), got shape {exclude.shape}")
         keep = exclude[i] != j
@@ -203,6 +204,14 @@ def interaction_pairs(model, locations, types, pattern_points, pattern_marks, ex
     else:
         inside_core, in_shell = d < hc, (d >= hc) & (d < r)
     return i, j, in_shell, inside_core
+
+
+def _flat_points(values, name: str) -> np.ndarray:
+    """Finite coordinates as an (n, 2) array (any shape holding pairs: a single point may be (2,))."""
+    array = finite_array(values, name)
+    if array.size % 2:
+        raise ValueError(f"{name} must hold (x, y) pairs, got shape {array.shape}")
+    return array.reshape(-1, 2)
 
 
 @dataclass(frozen=True)

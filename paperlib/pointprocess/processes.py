@@ -9,12 +9,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from paperlib._checks import positive_number
+from paperlib._checks import as_generator, budget, check_budget, finite_array, positive_number
 
 from .pattern import PointPattern
 from .window import Window
 
 __all__ = ["rMatClust", "rpoispp"]
+
+
+#: Default budget of :func:`rpoispp`: the expected number of points, intensity x area, summed over types.
+MAX_EXPECTED_POINTS = 10**7
 
 
 def _check_window(window) -> Window:
@@ -23,7 +27,8 @@ def _check_window(window) -> Window:
     return window
 
 
-def rpoispp(intensity, window: Window, *, categories=None, rng=None) -> PointPattern:
+def rpoispp(intensity, window: Window, *, categories=None, rng=None,
+            max_points: int = MAX_EXPECTED_POINTS) -> PointPattern:
     """Homogeneous Poisson process (complete spatial randomness), one intensity per type.
 
     Parameters
@@ -34,6 +39,9 @@ def rpoispp(intensity, window: Window, *, categories=None, rng=None) -> PointPat
     categories : sequence of str, optional
         Type names, one per intensity.
     rng : None, int or numpy.random.Generator
+    max_points : int, optional
+        Budget: the largest expected number of points, ``sum(intensity) * area`` (default
+        :data:`MAX_EXPECTED_POINTS`, 10**7), checked before drawing.
 
     Returns
     -------
@@ -42,10 +50,12 @@ def rpoispp(intensity, window: Window, *, categories=None, rng=None) -> PointPat
         locations uniform in the window.
     """
     window = _check_window(window)
-    intensity = np.atleast_1d(np.asarray(intensity, dtype=np.float64))
+    intensity = np.atleast_1d(finite_array(intensity, "intensity"))
     for value in intensity:
         positive_number(value, "intensity", allow_zero=True)
-    rng = np.random.default_rng(rng)
+    check_budget(float(intensity.sum() * window.area), budget(max_points, "max_points"), "max_points",
+                 "expected points (intensity x area)")
+    rng = as_generator(rng)
     counts = rng.poisson(intensity * window.area)
     points = window.uniform_points(int(counts.sum()), rng)
     marks = np.repeat(np.arange(len(intensity)), counts)
@@ -68,7 +78,7 @@ def rMatClust(kappa: float, scale: float, mu: float, window: Window, *, rng=None
     """
     window = _check_window(window)
     kappa, scale, mu = positive_number(kappa, "kappa"), positive_number(scale, "scale"), positive_number(mu, "mu")
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     frame = Window.rectangle(
         (window.xrange[0] - scale, window.xrange[1] + scale), (window.yrange[0] - scale, window.yrange[1] + scale)
     )

@@ -44,12 +44,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from paperlib._checks import budget, check_budget, integer_at_least
+
 from .pattern import PointPattern
 from .window import Window
 
 __all__ = ["QuadratureScheme", "default_nd", "quadscheme"]
 
 SPATSTAT_MIN_ND = 32  # spatstat.options("ndummy.min")
+#: Default budget of :func:`quadscheme`: grid dummies over all types, n_types * max(nd, ntile)^2 (2**24, ~16.8 M;
+#: our finest default scheme, ``fit.fine_nd``, uses at most 2**19).
+MAX_DUMMIES = 2**24
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,6 +110,7 @@ class QuadratureScheme:
 
 def default_nd(n_points: int) -> int:
     """spatstat's default dummy grid side: ``max(32, 10 * ceil(2 sqrt(n) / 10))``."""
+    n_points = integer_at_least(n_points, "n_points", 0)
     return max(SPATSTAT_MIN_ND, 10 * math.ceil(2 * math.sqrt(n_points) / 10))
 
 
@@ -114,7 +120,7 @@ def _tile_count_for(nd: int, n_points: int) -> int:
     return next((d for d in range(smallest, nd + 1) if nd % d == 0), nd)
 
 
-def quadscheme(pattern: PointPattern, nd=None, *, ntile=None) -> QuadratureScheme:
+def quadscheme(pattern: PointPattern, nd=None, *, ntile=None, max_dummies: int = MAX_DUMMIES) -> QuadratureScheme:
     """spatstat's default quadrature scheme for a pattern (``quadscheme(X, nd = nd)``).
 
     Parameters
@@ -125,6 +131,9 @@ def quadscheme(pattern: PointPattern, nd=None, *, ntile=None) -> QuadratureSchem
     ntile : int, optional
         Side of the grid of weighting tiles; default nd when nd is defaulted, else the
         smallest divisor of nd at least the default nd (spatstat's rule).
+    max_dummies : int, optional
+        Budget: at most this many grid cells over all types, ``n_types * max(nd, ntile)**2``
+        (default :data:`MAX_DUMMIES`, 2**24); a larger scheme raises a ValueError before allocating.
 
     Returns
     -------
@@ -142,12 +151,14 @@ def quadscheme(pattern: PointPattern, nd=None, *, ntile=None) -> QuadratureSchem
     """
     if not isinstance(pattern, PointPattern):
         raise TypeError(f"pattern must be a PointPattern, got {type(pattern).__name__}")
-    if nd is None:
-        nd = default_nd(pattern.n)
-        ntile = nd if ntile is None else _checked_side(ntile, "ntile")
-    else:
-        nd = _checked_side(nd, "nd")
-        ntile = _tile_count_for(nd, pattern.n) if ntile is None else _checked_side(ntile, "ntile")
+    max_dummies = budget(max_dummies, "max_dummies")
+    nd = default_nd(pattern.n) if nd is None else _checked_side(nd, "nd")
+    ntile = None if ntile is None else _checked_side(ntile, "ntile")
+    # checked before spatstat's tile rule, which scans the divisors of nd
+    check_budget(pattern.n_types * max(nd, ntile or 0) ** 2, max_dummies, "max_dummies",
+                 "quadrature grid cells (n_types * max(nd, ntile)^2)")
+    if ntile is None:  # the default nd's tiles are its own grid (the rule gives nd itself)
+        ntile = _tile_count_for(nd, pattern.n)
     dummies = _grid_dummies(pattern.window, nd)
     tile_of_point, tile_areas = _tiles(pattern.window, ntile, np.vstack([pattern.points, dummies]))
     dummies, tile_of_point = _fill_empty_tiles(pattern.window, ntile, dummies, tile_of_point, tile_areas)

@@ -35,6 +35,8 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm.auto import tqdm
 
+from paperlib._checks import as_generator, budget, check_budget, instance_of, point_array
+
 from . import _kernels
 from ._kernels import CELL_FULL, DONE, POINTS_FULL, Grid, Interaction, Moves, Proposals, State
 from .models import MultiStraussHard
@@ -43,6 +45,8 @@ from .window import Window
 
 __all__ = ["intensity_map_values", "rmh"]
 
+#: Default budget of :func:`rmh` (``max_steps``): 10**8 steps, about ten seconds (the paper uses 10**5).
+MAX_STEPS = 10**8
 _CHUNK_STEPS = 1 << 15  # steps per kernel call: ~2 MB of pre-drawn randomness
 _MAX_CELLS = 1 << 20
 _POINTS_PER_CELL = 2.0
@@ -64,6 +68,7 @@ def rmh(
     intensity_map=None,
     rng=None,
     progress: bool = False,
+    max_steps: int = MAX_STEPS,
 ) -> PointPattern:
     r"""Simulate a multitype Strauss hard-core process by Metropolis-Hastings.
 
@@ -145,6 +150,8 @@ def rmh(
         Randomness; the same seed gives the same pattern bit for bit.
     progress : bool
         Show a tqdm progress bar (updated per chunk of 32768 steps).
+    max_steps : int, optional
+        Budget: the largest ``T`` allowed (default :data:`MAX_STEPS`, 10**8, about ten seconds).
 
     Returns
     -------
@@ -190,6 +197,8 @@ def rmh(
     spatial point processes. Scand. J. Statist. 21, 359-373, section 3.
     Baddeley, Rubak, Turner (2015). Spatial Point Patterns, section 13.5.
     """
+    _check_steps(T)
+    check_budget(int(T), budget(max_steps, "max_steps"), "max_steps", "Metropolis-Hastings steps (T)")
     pattern, _ = _simulate(
         model, window, T, stepper=_kernels.mh_steps, start=start, p=p, q=q, ptypes=ptypes, fixall=fixall,
         periodic=periodic, intensity_map=intensity_map, rng=rng, progress=progress,
@@ -234,7 +243,7 @@ def _simulate(model, window, T, *, stepper, trace=False, start=None, p=0.0, q=0.
     setup = _prepare(model, window, T, p=p, q=q, ptypes=ptypes, fixall=fixall, periodic=periodic,
                      intensity_map=intensity_map)
     _check_start_spec(start, setup)
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng)
     chain = _Chain(setup, *_start_points(start, setup, rng))
     if isinstance(start, PointPattern):  # a random start violates hard cores by design
         chain.warn_if_zero_density()
@@ -346,7 +355,10 @@ def intensity_map_values(intensity_map, window: Window, points) -> np.ndarray:
     ValueError
         For a map that :func:`rmh` would refuse (not 2-D, negative, non-finite, all zero).
     """
-    points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if intensity_map is None:
+        raise ValueError("intensity_map must be a non-empty 2-D image (rows, columns), got None")
+    instance_of(window, Window, "window")
+    points = point_array(points, "points")
     return _checked_intensity_map(intensity_map, window).at(points[:, 0], points[:, 1])
 
 

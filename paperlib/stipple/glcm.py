@@ -40,7 +40,9 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from paperlib._checks import positive_number
+from numba.extending import overload
+
+from paperlib._checks import budget, check_budget, finite_array, positive_number
 
 __all__ = [
     "GLCMFeatures",
@@ -169,13 +171,19 @@ def check_bitonal(image) -> np.ndarray:
 # offsets and counts
 
 
-def paper_offsets(n: int) -> np.ndarray:
+#: Default budget of :func:`paper_offsets` (``max_n``): the largest texture side, 2**16 (the paper's is 256).
+MAX_TEXTURE_SIDE = 2**16
+
+
+def paper_offsets(n: int, *, max_n: int = MAX_TEXTURE_SIDE) -> np.ndarray:
     """The ``3 (n - 1)`` displacement vectors of Kim et al. for an ``n x n`` texture.
 
     Parameters
     ----------
     n : int
         Side of the texture, >= 2. For a rectangular texture use its shorter side.
+    max_n : int, optional
+        Budget: the largest ``n`` allowed (default :data:`MAX_TEXTURE_SIDE`, 2**16).
 
     Returns
     -------
@@ -193,6 +201,7 @@ def paper_offsets(n: int) -> np.ndarray:
         raise ValueError(f"n must be an integer texture side, got {n!r}")
     if n < 2:
         raise ValueError(f"n must be >= 2 (offsets 1 .. n-1), got {n}")
+    check_budget(int(n), budget(max_n, "max_n"), "max_n", "pixels of texture side (n)")
     lengths = np.arange(1, n, dtype=np.int64)
     zeros = np.zeros_like(lengths)
     horizontal = np.column_stack([zeros, lengths])
@@ -441,15 +450,8 @@ def ace(features_a, features_b) -> float:
 
 
 @numba.njit(cache=True)
-def flip_update_kernel(texture, counts, y, x, offsets):
-    """Flip ``texture[y, x]`` in place and update ``counts`` in O(len(offsets)); no checks.
-
-    Precondition (checked by :func:`flip_update`, the caller's duty inside numba loops):
-    ``texture`` 2-D bool or 0/1 integers, ``counts`` int64 (k, 2, 2) equal to
-    ``cooccurrence_counts(texture, offsets)``, ``offsets`` int64 (k, 2) non-zero and fitting
-    the texture, ``0 <= y < h``, ``0 <= x < w``. Any non-zero pixel reads as ink, so indices
-    into ``counts`` stay in range whatever the texture holds.
-    """
+def _flip_update_kernel(texture, counts, y, x, offsets):
+    """The numba body of :func:`flip_update_kernel` (its precondition): no checks."""
     height, width = texture.shape
     old = 1 if texture[y, x] != 0 else 0
     new = 1 - old
@@ -508,26 +510,8 @@ def _offset_error_change(texture, counts, y, x, m, dy, dx, target, total):
 
 
 @numba.njit(cache=True)
-def ace_change_kernel(texture, counts, y, x, offsets, target, totals):
-    """ACE(after flipping ``texture[y, x]``) - ACE(now), without changing anything; no checks.
-
-    Lets the spin-flip synthesis reject a flip without applying and undoing it: for each offset
-    only the (at most four) entries touched by the pairs ``(p - o, p)`` and ``(p, p + o)`` change,
-    so the cost is O(len(offsets)) like :func:`flip_update_kernel`.
-
-    Parameters
-    ----------
-    texture, counts, y, x, offsets
-        As for :func:`flip_update_kernel` (same preconditions).
-    target : float64 array, shape (k, 2, 2)
-        Normalised GLCMs of the example texture, ``N_t`` of eq. (5).
-    totals : float64 array, shape (k,)
-        ``pair_totals(texture.shape, offsets)``: the normaliser of ``counts``.
-
-    References
-    ----------
-    Kim et al. 2009, section 3.4.1, eq. (5).
-    """
+def _ace_change_kernel(texture, counts, y, x, offsets, target, totals):
+    """The numba body of :func:`ace_change_kernel`: no checks."""
     change = 0.0
     for m in range(offsets.shape[0]):
         change += _offset_error_change(texture, counts, y, x, m, offsets[m, 0], offsets[m, 1], target, totals[m]) / totals[m]
@@ -575,17 +559,79 @@ def flip_update(texture: np.ndarray, counts: np.ndarray, y: int, x: int, offsets
     ----------
     Kim et al. 2009, section 3.4.1 (Metropolis spin flips of one random pixel).
     """
+    _flip_update_kernel(*_checked_flip(texture, counts, y, x, offsets, writeable=True))
+
+
+def _checked_flip(texture, counts, y, x, offsets, *, writeable: bool) -> tuple:
+    """The arguments of a flip kernel, checked in O(k) (the texture's values are not scanned)."""
     if not isinstance(texture, np.ndarray) or texture.ndim != 2 or texture.dtype.kind not in "biu":
         raise ValueError("texture must be a 2-D bool or integer (0/1) numpy array, modified in place")
     if not isinstance(counts, np.ndarray) or counts.dtype != np.int64 or counts.shape[1:] != (2, 2):
         raise ValueError("counts must be the int64 (k, 2, 2) array returned by cooccurrence_counts")
-    if not (texture.flags.writeable and counts.flags.writeable):
+    if writeable and not (texture.flags.writeable and counts.flags.writeable):
         raise ValueError("texture and counts must be writeable: they are updated in place")
     checked = _check_offsets(offsets, texture.shape)
     if len(checked) != len(counts):
         raise ValueError(f"counts hold {len(counts)} offsets but {len(checked)} offsets were given")
     row, col = _pixel_index(y, "y", texture.shape[0]), _pixel_index(x, "x", texture.shape[1])
-    flip_update_kernel(texture, counts, row, col, checked)
+    return texture, counts, row, col, checked
+
+
+def flip_update_kernel(texture, counts, y, x, offsets):
+    """Flip ``texture[y, x]`` in place and update ``counts`` in O(len(offsets)); checked only from Python.
+
+    Called from Python, it checks its arguments as :func:`flip_update` does (dtype, rank, shape,
+    offsets, pixel index: O(k)) before entering numba. Called inside a numba function, it compiles
+    to the kernel itself, without checks: the caller's duty there is the precondition below.
+
+    Precondition inside numba: ``texture`` 2-D bool or 0/1 integers, ``counts`` int64 (k, 2, 2)
+    equal to ``cooccurrence_counts(texture, offsets)``, ``offsets`` int64 (k, 2) non-zero and
+    fitting the texture, ``0 <= y < h``, ``0 <= x < w``. Any non-zero pixel reads as ink, so
+    indices into ``counts`` stay in range whatever the texture holds.
+    """
+    _flip_update_kernel(*_checked_flip(texture, counts, y, x, offsets, writeable=True))
+
+
+def ace_change_kernel(texture, counts, y, x, offsets, target, totals):
+    """ACE(after flipping ``texture[y, x]``) - ACE(now), without changing anything.
+
+    Lets the spin-flip synthesis reject a flip without applying and undoing it: for each offset
+    only the (at most four) entries touched by the pairs ``(p - o, p)`` and ``(p, p + o)`` change,
+    so the cost is O(len(offsets)) like :func:`flip_update_kernel`. Called from Python its
+    arguments are checked (dtype, rank, shape: O(k)) before entering numba; inside a numba
+    function it compiles to the kernel itself, without checks.
+
+    Parameters
+    ----------
+    texture, counts, y, x, offsets
+        As for :func:`flip_update_kernel` (same preconditions).
+    target : float64 array, shape (k, 2, 2)
+        Normalised GLCMs of the example texture, ``N_t`` of eq. (5).
+    totals : float64 array, shape (k,)
+        ``pair_totals(texture.shape, offsets)``: the normaliser of ``counts``.
+
+    References
+    ----------
+    Kim et al. 2009, section 3.4.1, eq. (5).
+    """
+    texture, counts, row, col, checked = _checked_flip(texture, counts, y, x, offsets, writeable=False)
+    k = len(checked)
+    target = finite_array(target, "target", shape=(k, 2, 2))
+    totals = finite_array(totals, "totals", shape=(k,))
+    if (totals <= 0).any():
+        raise ValueError("totals must be positive pair counts: pass pair_totals(texture.shape, offsets)")
+    return _ace_change_kernel(texture, counts, row, col, checked, target, totals)
+
+
+@overload(flip_update_kernel)
+def _flip_update_kernel_in_numba(texture, counts, y, x, offsets):
+    return lambda texture, counts, y, x, offsets: _flip_update_kernel(texture, counts, y, x, offsets)
+
+
+@overload(ace_change_kernel)
+def _ace_change_kernel_in_numba(texture, counts, y, x, offsets, target, totals):
+    return lambda texture, counts, y, x, offsets, target, totals: _ace_change_kernel(
+        texture, counts, y, x, offsets, target, totals)
 
 
 def _pixel_index(value, name: str, size: int) -> int:

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from paperlib._checks import as_generator
+from paperlib._checks import as_generator, instance_of
 from scipy.spatial import cKDTree
 from skimage.measure import label, regionprops
 
@@ -399,6 +399,7 @@ def paper_radius_quantiles(geometry: StippleGeometry) -> np.ndarray:
     up to ``u = 0.9`` and uniform on ``(O_avg, O_max]`` beyond: piecewise linear in ``u``,
     exact at these eleven knots.
     """
+    instance_of(geometry, StippleGeometry, "geometry")
     knots = np.linspace(0.0, 1.0, 11)
     return np.interp(knots, [0.0, P_MIN, 1.0 - P_MAX, 1.0],
                      [geometry.o_min, geometry.o_avg, geometry.o_avg, geometry.o_max])

@@ -33,7 +33,7 @@ import shapely
 from matplotlib.colors import to_rgb
 from scipy.spatial import Delaunay, QhullError
 
-from .._checks import check_edges, positive_number
+from .._checks import check_edges, instance_of, point_array, positive_number
 from ..geometry import (
     Element,
     OrientedBoxes,
@@ -186,6 +186,9 @@ def continuation(boxes_a: OrientedBoxes, boxes_b: OrientedBoxes, epsilon: float)
     Barla et al. 2006, section 2.2.2 and Figure 2(b).
     """
     epsilon = positive_number(epsilon, "epsilon")
+    instance_of(boxes_a, OrientedBoxes, "boxes_a")
+    if len(instance_of(boxes_b, OrientedBoxes, "boxes_b")) != len(boxes_a):
+        raise ValueError(f"boxes_a and boxes_b hold the pairs row by row: {len(boxes_a)} and {len(boxes_b)} boxes")
     corners_a, corners_b = boxes_a.corners(), boxes_b.corners()
     gaps = [_gap_along(first.axes[:, :, column], first.centers, c_first, c_second, epsilon)
             for first, c_first, c_second in ((boxes_a, corners_a, corners_b), (boxes_b, corners_b, corners_a))
@@ -338,7 +341,7 @@ def unskewed_delaunay_edges(points, *, max_angle: float = MAX_UNSKEWED_ANGLE) ->
     ValueError
         Fewer than 3 points, all points collinear or repeated, or no unskewed triangle.
     """
-    points = np.asarray(points, dtype=np.float64)
+    points = point_array(points, "points")
     if len(points) < 3:
         raise ValueError(f"a 2D distribution needs at least 3 element centres, got {len(points)}")
     try:

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import positive_number
+from .._checks import finite_array, positive_number
 from ..geometry import hausdorff_boxes
 
 __all__ = ["MEASURES", "Thresholds", "measure_tables", "rule_score"]
@@ -114,10 +114,10 @@ def measure_tables(half_lengths, angles, colors) -> np.ndarray:
     ----------
     Barla et al. 2006, section 3.1 (the four geometric measures and the colour distance).
     """
-    half_lengths = np.asarray(half_lengths, dtype=np.float64)
-    angles = np.asarray(angles, dtype=np.float64)
-    colors = np.asarray(colors, dtype=np.float64)
+    angles = finite_array(angles, "angles", ndim=1)
     n = len(angles)
+    half_lengths = finite_array(half_lengths, "half_lengths", shape=(n, 2))
+    colors = finite_array(colors, "colors", shape=(n, 3))
     corners = _local_corners(half_lengths, angles)
     shape = hausdorff_boxes(corners[:, None], corners[None, :]).reshape(n, n)
     difference = np.mod(angles[:, None] - angles[None, :], np.pi)

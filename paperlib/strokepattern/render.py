@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from .._checks import check_edges, instance_of, point_array
 from ..geometry import Element, OrientedBoxes, Stroke
 
 __all__ = ["plot_boxes", "plot_graph", "plot_strokes"]
@@ -69,6 +70,7 @@ def plot_boxes(boxes: OrientedBoxes, ax=None, **style):
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
 
+    instance_of(boxes, OrientedBoxes, "boxes")
     ax = plt.gca() if ax is None else ax
     style = {"facecolors": "none", "edgecolors": "tab:orange", "linewidths": 0.8} | style
     ax.add_collection(PolyCollection(list(boxes.corners()), **style))
@@ -80,9 +82,9 @@ def plot_graph(positions, edges, ax=None, **style):
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
 
+    positions = point_array(positions, "positions")
+    edges = check_edges(edges, len(positions))
     ax = plt.gca() if ax is None else ax
-    positions = np.asarray(positions, dtype=np.float64)
-    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
     style = {"colors": "0.55", "linewidths": 0.6} | style
     ax.add_collection(LineCollection(positions[edges], **style))
     return ax

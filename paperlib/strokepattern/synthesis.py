@@ -55,7 +55,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import breadth_first_order
 
 from ..geometry import Element, Stroke, lloyd_relaxation
-from .._checks import as_generator, positive_number
+from .._checks import as_generator, budget, check_budget, instance_of, positive_number
 from ._kernels import BEST, CLOSE, RANDOM, grow
 from .analysis import (
     PatternAnalysis,
@@ -91,6 +91,7 @@ def _extent(target, dimension: int):
 
 def target_count(analysis: PatternAnalysis, target) -> int:
     """N_tar = N_ref A_tar / A_ref, rounded, at least 1 (section 3.2)."""
+    instance_of(analysis, PatternAnalysis, "analysis")
     _, extent = _extent(target, analysis.dimension)
     return max(1, int(round(len(analysis) * extent / analysis.area)))
 
@@ -184,19 +185,31 @@ def _adjacency(n: int, edges) -> sparse.csr_matrix:
     return sparse.csr_matrix((np.ones(len(rows), dtype=np.int8), (rows, cols)), shape=(n, n))
 
 
-def ring_neighbourhoods(n: int, edges, rings: int):
+#: Default budget of :func:`ring_neighbourhoods` (``max_pairs``): (node, neighbour) entries, nodes included,
+#: 2**24 (~16.8 M, about 100 MB of sparse matrix); a synthesis of hundreds of elements uses thousands.
+MAX_PAIRS = 2**24
+
+
+def ring_neighbourhoods(n: int, edges, rings: int, *, max_pairs: int = MAX_PAIRS):
     """The k-ring neighbourhood of every node: all nodes within ``rings`` hops, itself excluded.
 
     Returns CSR arrays ``(pointers, neighbours)``: node ``i``'s neighbourhood is
-    ``neighbours[pointers[i]:pointers[i + 1]]``, sorted.
+    ``neighbours[pointers[i]:pointers[i + 1]]``, sorted. ``max_pairs`` (default :data:`MAX_PAIRS`)
+    bounds the ``n`` nodes and, ring by ring, the (node, neighbour) pairs found: a ValueError
+    before allocating more.
     """
     if isinstance(rings, bool) or not isinstance(rings, (int, np.integer)) or rings < 1:
         raise ValueError(f"rings (the neighbourhood size k) must be an integer >= 1, got {rings!r}")
-    n = _count(n)
+    n, max_pairs = _count(n), budget(max_pairs, "max_pairs")
+    check_budget(n, max_pairs, "max_pairs", "nodes")
     adjacency = _adjacency(n, edges).astype(bool)
     # boolean products (or of ands): path counts in int8 would wrap past 127 and drop reachable nodes
     reach = sparse.identity(n, dtype=bool, format="csr")
+    degrees = adjacency.getnnz(axis=1).astype(np.int64)
     for _ in range(int(rings)):
+        # the next ring holds at most the pairs so far plus one per edge leaving a reached node
+        bound = min(n * n, reach.nnz + int(degrees[reach.indices].sum()))
+        check_budget(bound, max_pairs, "max_pairs", "neighbourhood pairs (at most)")
         grown = (reach + reach @ adjacency).tocsr()
         if grown.nnz == reach.nnz:  # every neighbourhood is a whole connected component: more rings add nothing
             break

@@ -9,8 +9,32 @@ from __future__ import annotations
 
 import html
 import io
+import math
 import time
 from contextlib import contextmanager
+
+from paperlib._checks import integer_at_least
+
+#: Largest figure an explorer draws, in pixels (figsize width x height x dpi**2): 2**25, about 33 M.
+MAX_FIGURE_PIXELS = 2**25
+
+
+def figure_settings(figsize, dpi) -> tuple[tuple[float, float], int]:
+    """``(figsize, dpi)`` of an explorer's figure, checked: a pair of positive inches and an int dpi >= 10.
+
+    Raises a ValueError naming the parameter for anything else, or for a figure above
+    :data:`MAX_FIGURE_PIXELS` pixels.
+    """
+    dpi = integer_at_least(dpi, "dpi", 10)
+    try:
+        width, height = (float(side) for side in figsize)
+    except (TypeError, ValueError):
+        raise ValueError(f"figsize must be a pair of numbers (inches), got {figsize!r:.60}") from None
+    if not all(math.isfinite(side) and side > 0 for side in (width, height)):
+        raise ValueError(f"figsize must be a pair of positive finite numbers (inches), got {figsize!r}")
+    if width * height * dpi**2 > MAX_FIGURE_PIXELS:
+        raise ValueError(f"figsize {figsize!r} at dpi {dpi} makes a figure above {MAX_FIGURE_PIXELS:,} pixels")
+    return (width, height), dpi
 
 
 class ExplorerBase:

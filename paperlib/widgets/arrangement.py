@@ -65,7 +65,7 @@ from pathlib import Path
 import numpy as np
 
 from paperlib import datasets
-from paperlib.widgets._base import ExplorerBase
+from paperlib.widgets._base import ExplorerBase, figure_settings
 from paperlib.arrangement import Arrangement, adjusted_rand_index, categorize, fit, render, synthesize
 from paperlib.arrangement import element_positions
 from paperlib.geometry import as_elements, read_svg
@@ -274,7 +274,22 @@ class ArrangementExplorer(ExplorerBase):
                  density: str, labels: str, interaction: str, image: str, figsize, dpi: int):
         import ipywidgets as w
 
-        self._image_name, self._figsize, self._dpi = image, tuple(figsize), int(dpi)
+        _check_choice(exemplar, tuple(EXEMPLARS), "exemplar")
+        _check_choice(density, DENSITY_KINDS, "density")
+        _check_choice(labels, ("categorize", "truth"), "labels")
+        _check_choice(interaction, INTERACTIONS, "interaction")
+        _check_choice(image, tuple(datasets.grayscale_names()), "image")
+        for name, value in (("exemplar_seed", exemplar_seed), ("seed", seed)):
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value < 2**31:
+                raise ValueError(f"{name} must be an integer in [0, 2**31), got {value!r}")
+        if isinstance(T, bool) or not isinstance(T, (int, np.integer)) or not T_RANGE[0] <= T <= T_RANGE[1]:
+            raise ValueError(f"T must be an integer in [{T_RANGE[0]}, {T_RANGE[1]}], got {T!r}")
+        if (isinstance(window_scale, bool) or not isinstance(window_scale, (int, float))
+                or not SCALE_RANGE[0] <= window_scale <= SCALE_RANGE[1]):
+            raise ValueError(f"window_scale must be in [{SCALE_RANGE[0]}, {SCALE_RANGE[1]}], got {window_scale!r}")
+        exemplar_seed, seed, T, window_scale = int(exemplar_seed), int(seed), int(T), float(window_scale)
+        self._figsize, self._dpi = figure_settings(figsize, dpi)
+        self._image_name = image
         self.drawing = self.categorization = self.model = self.arrangement = None
         self.density_array = self.figure = self.error = None
         self.summary = self.message = ""
@@ -634,22 +649,9 @@ def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int =
     ----------
     Hurtut et al. (2009), sections 2.2, 3.2, 3.3 and 4.1 (Figure 7).
     """
-    _check_choice(exemplar, tuple(EXEMPLARS), "exemplar")
-    _check_choice(density, DENSITY_KINDS, "density")
-    _check_choice(labels, ("categorize", "truth"), "labels")
-    _check_choice(interaction, INTERACTIONS, "interaction")
-    _check_choice(image, tuple(datasets.grayscale_names()), "image")
-    for name, value in (("exemplar_seed", exemplar_seed), ("seed", seed)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value < 2**31:
-            raise ValueError(f"{name} must be an integer in [0, 2**31), got {value!r}")
-    if isinstance(T, bool) or not isinstance(T, (int, np.integer)) or not T_RANGE[0] <= T <= T_RANGE[1]:
-        raise ValueError(f"T must be an integer in [{T_RANGE[0]}, {T_RANGE[1]}], got {T!r}")
-    if not isinstance(window_scale, (int, float)) or not SCALE_RANGE[0] <= window_scale <= SCALE_RANGE[1]:
-        raise ValueError(f"window_scale must be in [{SCALE_RANGE[0]}, {SCALE_RANGE[1]}], got {window_scale!r}")
-    explorer = ArrangementExplorer(exemplar=exemplar, exemplar_seed=int(exemplar_seed), seed=int(seed), T=int(T),
-                                   window_scale=float(window_scale), density=density, labels=labels,
-                                   interaction=interaction, image=image,
-                                   figsize=figsize, dpi=dpi)
+    explorer = ArrangementExplorer(exemplar=exemplar, exemplar_seed=exemplar_seed, seed=seed, T=T,
+                                   window_scale=window_scale, density=density, labels=labels,
+                                   interaction=interaction, image=image, figsize=figsize, dpi=dpi)
     if svg is not None:
         explorer.load_svg(svg)
     else:
@@ -658,5 +660,5 @@ def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int =
 
 
 def _check_choice(value, choices: tuple, name: str) -> None:
-    if value not in choices:
+    if not isinstance(value, str) or value not in choices:
         raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}")

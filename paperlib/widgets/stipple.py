@@ -70,7 +70,7 @@ import numpy as np
 from paperlib._checks import as_generator
 
 from paperlib import datasets
-from paperlib.widgets._base import ExplorerBase
+from paperlib.widgets._base import ExplorerBase, figure_settings
 from paperlib.datasets.stipple import stipple_tone_sheet, stipple_tone_texture
 from paperlib.stipple import (
     extract_distribution,
@@ -268,7 +268,26 @@ class StippleExplorer(ExplorerBase):
                  render_size, min_chunk, workers, figsize, dpi):
         import ipywidgets as w
 
-        self._figsize, self._dpi, self._workers = tuple(figsize), int(dpi), int(workers)
+        _check_choice(source, SOURCES, "source")
+        _check_choice(block, BLOCKS, "block")
+        _check_choice(tile, TILE_SIZES, "tile")
+        _check_choice(image, IMAGES, "image")
+        for name, value, (low, high) in (("sheet_seed", sheet_seed, (0, 2**31 - 1)), ("seed", seed, (0, 2**31 - 1)),
+                                         ("n_tones", n_tones, N_TONES_RANGE), ("N", N, BLOCK_SIZE_RANGE),
+                                         ("iterations", iterations, ITERATIONS_RANGE),
+                                         ("render_size", render_size, RENDER_SIZE_RANGE),
+                                         ("min_chunk", min_chunk, MIN_CHUNK_RANGE), ("workers", workers, (1, 64))):
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
+                raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value!r}")
+        for name, value, (low, high) in (("tone", tone, (0.05, 0.95)), ("T1", T1, THRESHOLD_RANGE),
+                                         ("T2", T2, THRESHOLD_RANGE)):
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) or not low <= value <= high:
+                raise ValueError(f"{name} must be a number in [{low}, {high}], got {value!r}")
+        sheet_seed, n_tones, block, N, iterations = int(sheet_seed), int(n_tones), int(block), int(N), int(iterations)
+        tile, seed, render_size, min_chunk = int(tile), int(seed), int(render_size), int(min_chunk)
+        tone, T1, T2 = float(tone), float(T1), float(T2)
+        self._figsize, self._dpi = figure_settings(figsize, dpi)
+        self._workers = int(workers)
         self.stipple_source = self.library = self.rendering = self.input_image = None
         self.error_after_blur = self.figure = self.error = None
         self.summary = self.message = ""
@@ -615,25 +634,9 @@ def stipple_explorer(source: str = "sheet", *, sheet_seed: int = 0, n_tones: int
     ----------
     Kim et al. (2009), Figure 2, sections 3.1-3.4 and 4.
     """
-    _check_choice(source, SOURCES, "source")
-    _check_choice(block, BLOCKS, "block")
-    _check_choice(tile, TILE_SIZES, "tile")
-    _check_choice(image, IMAGES, "image")
-    for name, value, (low, high) in (("sheet_seed", sheet_seed, (0, 2**31 - 1)), ("seed", seed, (0, 2**31 - 1)),
-                                     ("n_tones", n_tones, N_TONES_RANGE), ("N", N, BLOCK_SIZE_RANGE),
-                                     ("iterations", iterations, ITERATIONS_RANGE),
-                                     ("render_size", render_size, RENDER_SIZE_RANGE),
-                                     ("min_chunk", min_chunk, MIN_CHUNK_RANGE), ("workers", workers, (1, 64))):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
-            raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value!r}")
-    for name, value, (low, high) in (("tone", tone, (0.05, 0.95)), ("T1", T1, THRESHOLD_RANGE),
-                                     ("T2", T2, THRESHOLD_RANGE)):
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.number)) or not low <= value <= high:
-            raise ValueError(f"{name} must be a number in [{low}, {high}], got {value!r}")
-    explorer = StippleExplorer(source=source, sheet_seed=int(sheet_seed), n_tones=int(n_tones), block=int(block),
-                               tone=float(tone), N=int(N), T1=float(T1), T2=float(T2), iterations=int(iterations),
-                               tile=int(tile), seed=int(seed), image=image, render_size=int(render_size),
-                               min_chunk=int(min_chunk), workers=int(workers), figsize=figsize, dpi=dpi)
+    explorer = StippleExplorer(source=source, sheet_seed=sheet_seed, n_tones=n_tones, block=block, tone=tone, N=N,
+                               T1=T1, T2=T2, iterations=iterations, tile=tile, seed=seed, image=image,
+                               render_size=render_size, min_chunk=min_chunk, workers=workers, figsize=figsize, dpi=dpi)
     if learn:
         explorer.learn()
     else:
@@ -642,5 +645,5 @@ def stipple_explorer(source: str = "sheet", *, sheet_seed: int = 0, n_tones: int
 
 
 def _check_choice(value, choices: tuple, name: str) -> None:
-    if value not in choices:
+    if isinstance(value, (np.ndarray, list, dict, set)) or value not in choices:
         raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}")

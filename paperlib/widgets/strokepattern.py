@@ -103,7 +103,8 @@ from paperlib.strokepattern import (
     synthesize,
     vary_positions,
 )
-from paperlib.widgets._base import CanvasDrawing, ExplorerBase
+from paperlib._checks import check_flag
+from paperlib.widgets._base import CanvasDrawing, ExplorerBase, figure_settings
 
 __all__ = ["ANALYSIS_CACHE", "EXEMPLARS", "PRESETS", "StrokePatternExplorer", "TARGET_FACTOR", "drawn_target",
            "preset_target", "stroke_hash", "strokepattern_explorer"]
@@ -336,7 +337,22 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
 
     def __init__(self, *, exemplar: str, exemplar_seed: int, contour: bool, rings: int, amount: float, vary: bool,
                  choice: str, seed: int, figsize, dpi: int, canvas_size):
-        self._figsize, self._dpi = tuple(figsize), int(dpi)
+        if not isinstance(exemplar, str) or exemplar not in EXEMPLARS:
+            raise ValueError(f"unknown exemplar {exemplar!r}; choose one of {', '.join(EXEMPLARS)}")
+        exemplar_seed = _check_int(exemplar_seed, "exemplar_seed", 0)
+        seed = _check_int(seed, "seed", 0)
+        rings = _check_int(rings, "rings", *RINGS_RANGE)
+        amount = _check_real(amount, "amount", 0.0, 1.0)
+        if not isinstance(choice, str) or choice not in ("close", "random", "best"):
+            raise ValueError(f"choice must be 'close', 'random' or 'best', got {choice!r}")
+        contour, vary = check_flag(contour, "contour"), check_flag(vary, "vary")
+        try:
+            canvas_size = tuple(_check_int(v, "canvas_size", 64) for v in canvas_size)
+        except TypeError:
+            raise ValueError(f"canvas_size must be a pair of integers, got {canvas_size!r:.60}") from None
+        if len(canvas_size) != 2:
+            raise ValueError(f"canvas_size must be a pair of integers, got {canvas_size!r}")
+        self._figsize, self._dpi = figure_settings(figsize, dpi)
         self.pattern = self.analysis = self.synthesis = self.synthesis_epsilon = None
         self.target = self.figure = self.error = self._synthesis_analysis = None
         self.target_label = self.summary = self.message = ""
@@ -830,29 +846,10 @@ def strokepattern_explorer(exemplar: str = "sketchy_hatching", *, exemplar_seed:
     ----------
     Barla et al. 2006, sections 2 (interactive analysis at the user scale), 3 (synthesis, variation) and 4.
     """
-    if exemplar not in EXEMPLARS:
-        raise ValueError(f"unknown exemplar {exemplar!r}; choose one of {', '.join(EXEMPLARS)}")
-    exemplar_seed = _check_int(exemplar_seed, "exemplar_seed", 0)
-    seed = _check_int(seed, "seed", 0)
-    rings = _check_int(rings, "rings", *RINGS_RANGE)
-    amount = _check_real(amount, "amount", 0.0, 1.0)
     if epsilon is not None:
         epsilon = _check_real(epsilon, "epsilon", 0.0, open_low=True)
-    if choice not in ("close", "random", "best"):
-        raise ValueError(f"choice must be 'close', 'random' or 'best', got {choice!r}")
-    for name, flag in (("contour", contour), ("vary", vary)):
-        if not isinstance(flag, (bool, np.bool_)):
-            raise ValueError(f"{name} must be a bool, got {flag!r}")
-    dpi = _check_int(dpi, "dpi", 10)
-    try:
-        figsize = tuple(_check_real(v, "figsize", 0.0, open_low=True) for v in figsize)
-        canvas_size = tuple(_check_int(v, "canvas_size", 64) for v in canvas_size)
-    except TypeError:
-        raise ValueError("figsize and canvas_size must be pairs of numbers") from None
-    if len(figsize) != 2 or len(canvas_size) != 2:
-        raise ValueError(f"figsize and canvas_size must be pairs, got {figsize!r} and {canvas_size!r}")
-    explorer = StrokePatternExplorer(exemplar=exemplar, exemplar_seed=exemplar_seed, contour=bool(contour),
-                                     rings=rings, amount=amount, vary=bool(vary), choice=choice, seed=seed,
+    explorer = StrokePatternExplorer(exemplar=exemplar, exemplar_seed=exemplar_seed, contour=contour,
+                                     rings=rings, amount=amount, vary=vary, choice=choice, seed=seed,
                                      figsize=figsize, dpi=dpi, canvas_size=canvas_size)
     if target is not None:
         dimension = explorer._exemplar(exemplar, exemplar_seed).dimension
