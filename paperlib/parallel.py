@@ -14,6 +14,8 @@ results in task order across both back ends.
 from __future__ import annotations
 
 import os
+import pickle
+import sys
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
@@ -54,6 +56,75 @@ def _call(fn, task, _seed_sequence):
     return fn(task)
 
 
+def progress_enabled(progress) -> bool:
+    """Whether a progress bar shows: ``progress`` if a bool, else (None) whether stderr is a terminal.
+
+    Parameters
+    ----------
+    progress : bool or None
+        True or False to force the bar on or off; None (the usual default) shows it only when
+        standard error is a terminal, so logs, CI runs and papermill kernels get no bar.
+
+    Returns
+    -------
+    bool
+    """
+    if progress is None:
+        stream = sys.stderr
+        try:
+            return bool(stream is not None and stream.isatty())
+        except (AttributeError, ValueError):  # a replaced or closed stream
+            return False
+    if not isinstance(progress, (bool, np.bool_)):
+        raise TypeError(f"progress must be True, False or None (on when stderr is a terminal), got {progress!r}")
+    return bool(progress)
+
+
+def progress_bar(iterable=None, *, progress=None, total=None, desc=None, unit="it"):
+    """A tqdm bar over ``iterable`` (or to update by hand), shown when :func:`progress_enabled` says so.
+
+    A bar only reports: it never changes what the loop computes.
+
+    Parameters
+    ----------
+    iterable : iterable, optional
+        What to iterate over; None for a bar updated with ``bar.update(n)``.
+    progress : bool or None
+        See :func:`progress_enabled`.
+    total : int, optional
+        Number of steps (default ``len(iterable)`` when it has one).
+    desc : str, optional
+        Label of the bar.
+    unit : str
+        Name of one step.
+
+    Returns
+    -------
+    tqdm.tqdm
+        Disabled (a plain pass-through) when the bar is off.
+    """
+    from tqdm.auto import tqdm
+
+    return tqdm(iterable, total=total, desc=desc, unit=unit, disable=not progress_enabled(progress),
+                mininterval=0.5)
+
+
+_FN_FIX = ("define the function at the top level of a module or notebook (def my_run(task, rng): ...), not as a "
+           "lambda or a function nested in another, and bind fixed arguments with functools.partial of it")
+_TASK_FIX = "make the tasks plain data (numbers, strings, arrays, tuples, dataclasses), not open files, locks or generators"
+
+
+def _check_picklable(value, what: str, fix: str, workers: int) -> None:
+    """A TypeError naming the fix when ``value`` cannot go to worker processes (instead of a bare PicklingError)."""
+    try:
+        pickle.dumps(value)
+    except Exception as exc:  # PicklingError, AttributeError ("local object"), TypeError (locks, generators)
+        raise TypeError(
+            f"{what} cannot be sent to {workers} worker processes because it cannot be pickled "
+            f"({type(exc).__name__}: {exc}): {fix}; or pass workers=1 to run in this process"
+        ) from exc
+
+
 def run_many(fn, tasks, *, rng=None, seeded=True, client=None, workers=None, progress=False, desc=None):
     """Run ``fn`` on every task, independently, and return the results in task order.
 
@@ -73,8 +144,8 @@ def run_many(fn, tasks, *, rng=None, seeded=True, client=None, workers=None, pro
     workers : int, optional
         Local processes (default: the number of CPUs). ``1`` runs in this process,
         which is what tests and debuggers want.
-    progress : bool
-        Show a tqdm progress bar.
+    progress : bool or None
+        Show a tqdm progress bar; None: only when stderr is a terminal (:func:`progress_enabled`).
     desc : str, optional
         Label of the progress bar.
 
@@ -83,12 +154,19 @@ def run_many(fn, tasks, *, rng=None, seeded=True, client=None, workers=None, pro
     list
         ``[fn(task_0, ...), fn(task_1, ...), ...]``. The first exception raised by a
         run propagates (after the other local runs are cancelled).
+
+    Raises
+    ------
+    TypeError
+        When ``fn`` (or a task) must go to worker processes but cannot be pickled (a lambda,
+        a nested function): the message names the fix, a module-level function.
     """
     tasks = list(tasks)
     if not callable(fn):
         raise ValueError(f"fn must be callable, got {fn!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"workers must be a positive int, got {workers!r}")
+    progress_enabled(progress)  # a wrong value fails before any work
     seeds = spawn_seeds(rng, len(tasks)) if seeded else [None] * len(tasks)
     call = _call_seeded if seeded else _call
     if client is not None:
@@ -96,15 +174,13 @@ def run_many(fn, tasks, *, rng=None, seeded=True, client=None, workers=None, pro
     workers = min(workers or os.cpu_count() or 1, max(len(tasks), 1))
     if workers == 1:
         return [call(fn, task, seed) for task, seed in _progress(zip(tasks, seeds), progress, len(tasks), desc)]
+    _check_picklable(fn, f"fn={getattr(fn, '__qualname__', type(fn).__name__)!r}", _FN_FIX, workers)
+    _check_picklable(tasks[0], f"the first task (a {type(tasks[0]).__name__})", _TASK_FIX, workers)
     return _run_in_processes(call, fn, tasks, seeds, workers, progress, desc)
 
 
-def _progress(iterable, enabled: bool, total: int, desc):
-    if not enabled:
-        return iterable
-    from tqdm.auto import tqdm
-
-    return tqdm(iterable, total=total, desc=desc)
+def _progress(iterable, enabled, total: int, desc):
+    return progress_bar(iterable, progress=enabled, total=total, desc=desc)
 
 
 def _run_in_processes(call, fn, tasks, seeds, workers, progress, desc):

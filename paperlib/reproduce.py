@@ -31,8 +31,9 @@ import pandas as pd
 
 from . import repro
 from ._atomic import publish_folder, recover_folder
+from ._checks import instance_of
 from .claims import VERDICTS, ledger_table, load_claims, write_ledger
-from .parallel import run_many
+from .parallel import progress_enabled, run_many
 
 __all__ = [
     "NotebookRun",
@@ -102,6 +103,9 @@ def find_notebooks(notebooks_dir, pattern: str | None = None) -> list[Path]:
     ValueError
         When no notebook matches, naming the pattern and the available notebooks.
     """
+    instance_of(notebooks_dir, (str, os.PathLike), "notebooks_dir")
+    if pattern is not None:
+        instance_of(pattern, str, "pattern")
     notebooks = sorted(Path(notebooks_dir).glob("*.ipynb"))
     if pattern:
         glob = pattern if any(char in pattern for char in "*?[") else f"*{pattern}*"
@@ -114,7 +118,7 @@ def find_notebooks(notebooks_dir, pattern: str | None = None) -> list[Path]:
 
 def paper_and_figure(stem: str) -> tuple[str, str]:
     """``("kim2009", "fig07")`` for ``kim2009_fig07_examples``; ``("", "")`` otherwise."""
-    parts = stem.split("_")
+    parts = instance_of(stem, str, "stem").split("_")
     if parts[0] in PAPERS:
         figure = parts[1] if len(parts) > 2 and parts[1].startswith("fig") else ""
         return parts[0], figure
@@ -130,7 +134,8 @@ def _install_kernelspec(build_dir: Path) -> None:
     jupyter_dir = (build_dir / "jupyter").resolve()
     spec_path = jupyter_dir / "kernels" / KERNEL_NAME / "kernel.json"
     spec = {
-        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+        # ipykernel minus the false alarms it logs on every orderly shutdown (paperlib._kernel)
+        "argv": [sys.executable, "-m", "paperlib._kernel", "-f", "{connection_file}"],
         "display_name": f"Python 3 ({sys.executable})",
         "language": "python",
     }
@@ -164,7 +169,8 @@ def recover_figures(figures: Path) -> list[str]:
     return [path.name[1:-4] for path in leftovers if recover_folder(figures / path.name[1:-4])]
 
 
-def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None = None, timeout=None) -> NotebookRun:
+def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None = None, timeout=None,
+                 progress=False) -> NotebookRun:
     """Execute one notebook with papermill and publish its figures on success.
 
     Parameters
@@ -178,6 +184,13 @@ def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None 
         Overrides the notebook's own default seed.
     timeout : float, optional
         Per-cell time limit in seconds.
+    progress : bool or None
+        Show a tqdm bar over the notebook's cells (None: only when stderr is a terminal).
+
+    Returns
+    -------
+    NotebookRun
+        Whether it ran, how long it took, and the first line of its error.
     """
     import papermill
 
@@ -201,7 +214,7 @@ def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None 
             kernel_name=KERNEL_NAME,
             language="python",
             cwd=str(path.parent),
-            progress_bar=False,
+            progress_bar={"desc": path.stem, "unit": "cell"} if progress_enabled(progress) else False,
             execution_timeout=timeout,
         )
     except Exception as exc:  # a failing cell, a dead kernel, a timeout: report, don't crash the batch
@@ -218,8 +231,8 @@ def _run_task(task):
     return run_notebook(path, layout=layout, quality=quality, seed=seed, timeout=timeout)
 
 
-def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeout=None, progress=True,
-              figures_dir=None, build_dir=None):
+def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeout=None, progress=None,
+              figures_dir=None, build_dir=None, client=None):
     """Run notebooks, check statistics, write the index.
 
     Parameters
@@ -235,10 +248,15 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
         Overrides every notebook's default seed.
     timeout : float, optional
         Per-cell time limit in seconds.
-    progress : bool
-        Show a tqdm progress bar.
+    progress : bool or None
+        Show tqdm progress: one bar over the notebooks, or over the cells when a single notebook
+        runs here. None (default): only when stderr is a terminal.
     figures_dir, build_dir : str or Path, optional
         Put figures and build products elsewhere than ``root/figures`` and ``root/build``.
+    client : dask.distributed.Client, optional
+        Run the notebooks on this Dask cluster instead of local processes; ``jobs`` is then
+        ignored. Every worker needs paperlib, its dependencies and the project folder at the
+        same path (a shared file system): the executed notebooks and figures are written there.
 
     Returns
     -------
@@ -252,8 +270,14 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
     notebooks = find_notebooks(layout.notebooks, only)
     # fail before any work when a selected notebook's expected statistics are missing or malformed
     expected = repro.load_expected(layout.expected, notebooks=[path.stem for path in notebooks])
+    progress_enabled(progress)  # a wrong value fails before any work
     tasks = [(path, layout, quality, seed, timeout) for path in notebooks]
-    runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=progress, desc="notebooks")
+    if len(tasks) == 1 and client is None:  # one notebook, run here: show its cells
+        runs = [run_notebook(notebooks[0], layout=layout, quality=quality, seed=seed, timeout=timeout,
+                             progress=progress)]
+    else:
+        runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=progress, desc="notebooks",
+                        client=client)
     finished = [run.notebook for run in runs if run.ok]
     table = repro.check_stats(layout.figures, expected, notebooks=finished)
     all_stems = [path.stem for path in find_notebooks(layout.notebooks)]
@@ -273,7 +297,8 @@ def _expected_for_index(layout: Layout, stems) -> dict:
     return expected
 
 
-def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, build_dir=None) -> pd.DataFrame:
+def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, build_dir=None,
+               client=None) -> pd.DataFrame:
     """Run notebooks over several seeds and tabulate each statistic's spread.
 
     This is how a ``seed-study`` bound of ``tests/expected_stats.toml`` is measured: the range a
@@ -295,6 +320,8 @@ def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, bui
         Per-cell time limit in seconds.
     build_dir : str or Path, optional
         Instead of ``root/build``.
+    client : dask.distributed.Client, optional
+        Run on this Dask cluster (workers sharing the project folder), as :func:`reproduce`.
 
     Returns
     -------
@@ -313,7 +340,7 @@ def seed_study(root=".", *, only, seeds, quality="ci", jobs=1, timeout=None, bui
         folder = layout.build / "seed-study" / quality / f"seed-{seed}"
         seeded_layout = Layout.of(root, figures_dir=folder / "figures", build_dir=folder / "build")
         tasks += [(path, seeded_layout, quality, seed, timeout) for path in notebooks]
-    runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=False)
+    runs = run_many(_run_task, tasks, seeded=False, workers=jobs, progress=False, client=client)
     failed = [f"{run.notebook}: {run.error}" for run in runs if not run.ok]
     if failed:
         raise RuntimeError("seed study: notebooks failed: " + "; ".join(failed))
@@ -344,6 +371,10 @@ def write_index(layout: Layout, stems, expected: dict) -> Path:
     (paper claims we miss) in one list, and links to the ledgers; then each notebook's
     files and statistics.
     """
+    instance_of(layout, Layout, "layout")
+    instance_of(expected, dict, "expected")
+    for stem in instance_of(stems, (list, tuple), "stems"):
+        instance_of(stem, str, "each of stems")
     table = repro.check_stats(layout.figures, expected, notebooks=stems)
     ledgers = _write_ledgers(layout, table)
     lines = [

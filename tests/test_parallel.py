@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from paperlib.parallel import run_many, spawn_seeds
+from paperlib.parallel import progress_enabled, run_many, spawn_seeds
 
 
 def draw(task, rng):
@@ -66,10 +66,83 @@ def test_bad_rng(bad):
         spawn_seeds(bad, 2)
 
 
-@pytest.mark.dask
-def test_dask_local_cluster_gives_the_same_results():
-    distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+def nested_runner():
+    def run(task, rng):
+        return task
+
+    return run
+
+
+def test_unpicklable_function_names_the_fix():
+    """A lambda or nested function cannot go to worker processes: a TypeError says what to write instead."""
+    for fn in (lambda task, rng: task, nested_runner()):
+        with pytest.raises(TypeError, match=r"cannot be pickled .*top level of a module.*workers=1") as caught:
+            run_many(fn, range(4), rng=0, workers=2)
+        assert f"fn={fn.__qualname__!r}" in str(caught.value)  # names the culprit
+    assert run_many(lambda task, rng: task, range(3), rng=0, workers=1) == [0, 1, 2]  # in this process: fine
+
+
+def test_unpicklable_task_names_the_fix():
+    import threading
+
+    with pytest.raises(TypeError, match=r"first task \(a lock\).*plain data"):
+        run_many(square, [threading.Lock(), threading.Lock()], seeded=False, workers=2)
+
+
+def test_progress_bar_is_optional_and_changes_nothing(capsys):
+    quiet = run_many(draw, range(4), rng=7, workers=1)
+    assert "%|" not in capsys.readouterr().err
+    shown = run_many(draw, range(4), rng=7, workers=1, progress=True, desc="draws")
+    err = capsys.readouterr().err
+    assert "draws" in err and "4/4" in err
+    assert shown == quiet
+    run_many(draw, range(4), rng=7, workers=1, progress=None)  # auto: stderr is captured, not a terminal
+    assert "%|" not in capsys.readouterr().err
+    assert progress_enabled(None) is False and progress_enabled(True) is True
+    with pytest.raises(TypeError, match="progress must be True, False or None"):
+        run_many(draw, range(2), rng=7, workers=1, progress="on")
+
+
+def test_ci_installs_the_dask_extra():
+    """The Dask tests below run in CI only if `make test` (what .ci/run calls) installs the [dask] extra."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    install = [line for line in (root / "Makefile").read_text().splitlines() if "pip install" in line and "-e" in line]
+    assert install and all("dask" in line for line in install), install
+    assert "make test" in (root / ".ci" / "run").read_text()
+
+
+@pytest.fixture(scope="module")
+def dask_client():
+    distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed (pip install -e .[dask])")
+    # two small worker processes: tasks and results really go through pickling, as on a remote cluster
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  memory_limit="1GiB") as cluster:
         with distributed.Client(cluster) as client:
-            on_dask = run_many(draw, range(6), rng=42, client=client)
+            yield client
+
+
+@pytest.mark.dask
+def test_dask_local_cluster_gives_the_same_results(dask_client):
+    on_dask = run_many(draw, range(6), rng=42, client=dask_client)
     assert on_dask == run_many(draw, range(6), rng=42, workers=1)
+    assert on_dask == run_many(draw, range(6), rng=42, workers=2)
+
+
+@pytest.mark.dask
+def test_dask_envelopes_are_bit_identical_to_local_runs(dask_client):
+    """What the README promises: an envelope computed on a cluster equals the local one bit for bit."""
+    from paperlib.pointprocess import Lest, MultiStraussHard, Window, envelope, rmh
+
+    window = Window.rectangle((0, 1), (0, 1))
+    model = MultiStraussHard([120.0], gamma=0.4, r=[[0.05]], hc=[[0.02]])
+    observed = rmh(model, window, 20_000, rng=1)
+    for options in (dict(model=model, simulate_kwargs=dict(T=5_000)), dict()):  # a Gibbs null model, then CSR
+        local = envelope(observed, Lest, nsim=12, rng=5, workers=1, **options)
+        remote = envelope(observed, Lest, nsim=12, rng=5, client=dask_client, **options)
+        assert list(local.columns) == list(remote.columns)
+        for column in local.columns:
+            assert local[column].to_numpy().tobytes() == remote[column].to_numpy().tobytes(), column
+        other = envelope(observed, Lest, nsim=12, rng=6, workers=1, **options)
+        assert other["lo"].to_numpy().tobytes() != local["lo"].to_numpy().tobytes()  # the check can fail

@@ -179,3 +179,99 @@ def test_seed_study_prints_each_statistics_spread(project, capsys):
     assert "answer" in out and "[6, 8, 10]" in out and "time_x" not in out
     assert not (project / "figures").exists()  # a seed study never writes the committed figures
     assert main(["seed-study", "--root", str(project), "--only", "demo", "--seeds", "3"]) == 2
+
+
+def test_version(capsys):
+    from importlib.metadata import version
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == f"paperlib {version('paperlib')}"
+
+
+@pytest.mark.parametrize("command", [[], ["reproduce"], ["seed-study"]])
+def test_help_is_plain_text_with_examples(command, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main([*command, "--help"])
+    assert stop.value.code == 0
+    out = capsys.readouterr().out
+    assert "``" not in out and ":func:" not in out  # no raw reStructuredText
+    assert "examples:\n  python -m paperlib " in out
+    assert "--root" in out
+
+
+def test_outside_the_repository_the_error_hints_root(tmp_path, capsys, monkeypatch):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    assert main(["reproduce", "--quality", "ci"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and err[0].startswith("error: ")
+    assert err[1].startswith("hint: ") and "is not the paperlib repository" in err[1] and "--root" in err[1]
+    assert main(["seed-study", "--only", "x", "--root", str(elsewhere)]) == 2
+    assert "--root" in capsys.readouterr().err
+
+
+def test_a_subfolder_of_the_repository_hints_its_root(project, capsys):
+    inside = project / "notebooks" / "sub"
+    inside.mkdir()
+    assert main(["reproduce", "--root", str(inside), "--quality", "ci"]) == 2
+    assert f"--root {project.resolve()}" in capsys.readouterr().err
+
+
+def test_success_logs_no_kernel_false_alarms(project, capfd):
+    """The kernel's own log reaches the terminal (fd 2): on success it must not cry wolf (issue 22)."""
+    assert run_cli(project) == 0
+    err = capfd.readouterr().err
+    assert "KeyboardInterrupt caught in kernel" not in err
+    assert "without encryption" not in err and "WARNING" not in err
+    spec = json.loads((project / "build" / "jupyter" / "kernels" / "python3" / "kernel.json").read_text())
+    assert spec["argv"][1:3] == ["-m", "paperlib._kernel"]
+
+
+def test_kernel_filter_drops_only_the_false_alarms():
+    import logging
+
+    from paperlib._kernel import FalseAlarmFilter
+
+    def record(message):
+        return logging.LogRecord("IPKernelApp", logging.ERROR, __file__, 1, message, None, None)
+
+    quiet = FalseAlarmFilter()
+    assert not quiet.filter(record("KeyboardInterrupt caught in kernel."))
+    assert not quiet.filter(record("Kernel is running over TCP without encryption. All communication ..."))
+    assert quiet.filter(record("Exception in message handler:"))
+
+
+def test_one_notebook_shows_its_cells_several_show_notebooks(project, capfd):
+    assert run_cli(project, "--progress") == 0
+    err = capfd.readouterr().err
+    assert "kim2009_fig01_demo" in err and "4/4 [" in err and "cell" in err  # its three cells + injected parameters
+    write_notebook(project, "simhon2001_fig02_other", 'repro.record("answer", 1)')
+    with (project / "tests" / "expected_stats.toml").open("a") as handle:
+        handle.write('\n[simhon2001_fig02_other.answer]\nkind = "truth"\nvalue = 1\nsource = "ground truth"\n')
+    assert run_cli(project, "--progress") == 0
+    err = capfd.readouterr().err
+    assert "notebooks" in err and "2/2 [" in err and "cell" not in err
+    assert run_cli(project) == 0  # default: stderr is no terminal here, so no bar
+    assert "%|" not in capfd.readouterr().err
+
+
+@pytest.mark.dask
+def test_reproduce_on_a_dask_cluster_publishes_like_a_local_run(project):
+    """`reproduce(client=...)` (README, "Scale out with Dask"): workers sharing the folder run the notebooks."""
+    from paperlib.reproduce import reproduce
+
+    distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed (pip install -e .[dask])")
+    write_notebook(project, "simhon2001_fig02_other", 'repro.record("answer", 1)')
+    with (project / "tests" / "expected_stats.toml").open("a") as handle:
+        handle.write('\n[simhon2001_fig02_other.answer]\nkind = "truth"\nvalue = 1\nsource = "ground truth"\n')
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  memory_limit="1GiB") as cluster, distributed.Client(cluster) as client:
+        runs, table = reproduce(project, quality="ci", client=client)
+    assert [run.notebook for run in runs] == ["kim2009_fig01_demo", "simhon2001_fig02_other"]
+    assert all(run.ok for run in runs) and table.ok.all() and len(table) == 4
+    stats = repro.load_stats(project / "figures" / "kim2009_fig01_demo" / "stats.json")["statistics"]
+    assert stats["answer"] == 42 and stats["quality_seen"] == "ci"
+    assert (project / "figures" / "simhon2001_fig02_other" / "stats.json").exists()

@@ -123,3 +123,17 @@ def test_a_tone_map_without_a_light_level_still_reaches_white_and_black(examples
     ramp = np.tile(np.linspace(0.0, 1.0, 200), (50, 1))
     rendered = learnt.render(ramp, rng=0).image
     assert rendered[:, :5].mean() > 0.95 and rendered[:, -5:].mean() < 0.05  # 1 - g: 0.99 and 0.01
+
+
+def test_progress_bar_reports_tones_and_changes_nothing(examples, library, capsys):
+    """The tqdm bar over the tones (issue 22): shown on request, never changes the library."""
+    shown = learn_stipple_library(examples, size=48, iterations=5, rng=3, progress=True)
+    err = capsys.readouterr().err
+    assert "stipple tones" in err and "3/3" in err
+    for a, b in zip(library.tiles, shown.tiles):
+        np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(library.tone_grays, shown.tone_grays)
+    learn_stipple_library(examples[:2], size=32, iterations=1, rng=0)  # default: stderr is no terminal here
+    assert "stipple tones" not in capsys.readouterr().err
+    with pytest.raises(TypeError, match="progress must be True, False or None"):
+        learn_stipple_library(examples[:2], size=32, iterations=1, progress="yes")

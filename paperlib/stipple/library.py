@@ -21,7 +21,7 @@ from functools import partial
 
 import numpy as np
 
-from ..parallel import run_many, spawn_seeds
+from ..parallel import progress_enabled, run_many, spawn_seeds
 from .extraction import DistributionResult, Mark, classify_level, extract_distribution, extract_marks
 from .glcm import check_bitonal
 from .rendering import StippleRendering, level_grays, render_stippling, tone_gray_levels
@@ -126,7 +126,8 @@ def _learn_tone(task, *, size: int, iterations: int, rng) -> tuple[DistributionR
 
 
 def learn_stipple_library(
-    tone_textures, *, size=None, iterations: int = 30, levels=None, gray_repeats: int = 1, workers: int = 1, rng=None
+    tone_textures, *, size=None, iterations: int = 30, levels=None, gray_repeats: int = 1, workers: int = 1, rng=None,
+    progress=None,
 ) -> StippleLibrary:
     """Learn a stipple library from example tone textures (Kim et al. 2009, sections 3.2-4.1).
 
@@ -153,6 +154,10 @@ def learn_stipple_library(
         depend on it.
     rng : None, int or numpy.random.Generator, optional
         Random source; a seed fixes the library bit for bit.
+    progress : bool or None, optional
+        Show a tqdm bar over the tones (learning took 3 s for eight 128 px tones and 24 s at
+        the paper's 256 px on one core); default None shows it only when stderr is a terminal
+        (:func:`paperlib.parallel.progress_enabled`). The bar never changes the result.
 
     Returns
     -------
@@ -163,6 +168,8 @@ def learn_stipple_library(
     ValueError
         Fewer than two textures, non-bitonal or empty textures, a tile side < 2, a wrong
         number of levels, ``iterations`` < 1, and the errors of the steps.
+    TypeError
+        ``progress`` neither a bool nor None.
 
     Notes
     -----
@@ -178,6 +185,7 @@ def learn_stipple_library(
     Kim et al. 2009, Figure 2 (the system), 3.2 (distributions, marks), 3.4 (synthesis), 4.1
     (tone grays by pre-simulation).
     """
+    progress_enabled(progress)  # a wrong value fails before any work
     examples = _example_textures(tone_textures)
     size = _tile_size(size, examples)
     levels = _resolved_levels(levels, examples)
@@ -190,7 +198,7 @@ def learn_stipple_library(
     ]
     synthesis_seed, gray_seed = spawn_seeds(rng, 2)
     learn = partial(_learn_tone, size=size, iterations=iterations)
-    learnt = run_many(learn, tasks, rng=synthesis_seed, workers=workers)
+    learnt = run_many(learn, tasks, rng=synthesis_seed, workers=workers, progress=progress, desc="stipple tones")
     distributions, syntheses, marks = (list(column) for column in zip(*learnt))
     grays = tone_gray_levels(
         [synthesis.texture for synthesis in syntheses], marks, repeats=gray_repeats, rng=np.random.default_rng(gray_seed)
