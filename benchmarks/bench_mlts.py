@@ -12,6 +12,10 @@ anti-aliasing samples. Paper: about 3,000 objects "in less than 5 s on a laptop"
 <= 0.5 s for geometry and rendering. Baseline, same run: the rendering alone of the same
 structure, so the ratio shows how the time splits.
 
+"mlts: exclusion layer, objects one by one": Fig. 13's layer (600 objects tried, exclusion) sampled with
+``order="sequential"`` (each object finishes its trials and reductions before the next starts, issue 25)
+against the default rounds by size; the ratio is what the literal order costs (measured about 9).
+
 "mlts: scaling at constant density": the same three layers on a square image whose area grows
 with the number of objects (side 1024 * sqrt(n / 3000), the first layer's ``Max_O`` 40 * n / 3000),
 for about n = 3,000 to 30,000 objects. Issue 6 asks that it stay near-linear. Baseline, same
@@ -79,3 +83,21 @@ def linear_reference(objects):
 def scaling(objects):
     layers, side = scaled(objects)
     return lambda: make_texture(layers, side)
+
+
+# Fig. 13's layer (notebook alvarez2015_fig13-14_exclusion_inclusion, paper quality): 600 objects tried with
+# exclusion, Max_T = 20, s_R = 0.8, Max_DR = 10, on 512 x 512.
+FIG13 = Layer(texels=("ellipse", "rectangle", "triangle"), max_objects=600, aspect_ratio=2.0, max_diameter=120.0,
+              max_trials=20, size_reduction=0.8, max_reductions=10, exclusion=True, v0=(1.0, 0.0, 0.0),
+              v1=(0.0, 1.0, 0.0))
+
+
+def rounds_order(side):
+    return lambda: sample_structure([FIG13], side, side, seed=0)
+
+
+@benchmark("mlts: exclusion layer, objects one by one (order='sequential')", sizes=[512], baseline=rounds_order,
+           baseline_name="the same layer in rounds by size (the default)")
+def sequential_order(side):
+    """Issue 25: the paper's literal insertion order costs one shapely call per object and diameter."""
+    return lambda: sample_structure([FIG13], side, side, seed=0, order="sequential")

@@ -359,3 +359,71 @@ def test_tessellation_cells_are_the_faces_of_the_boundary_arrangement():
     cells = tessellation_cells(structure, 2, np.random.default_rng(0))
     # outside, A only, A and B, B only, B and C, C only, D
     assert cells.max() == len(faces) == 7
+
+
+# ---------------------------------------------------------------------------- order of insertion (issue 25)
+
+PACKING = Layer(texels=("ellipse", "rectangle", "triangle"), max_objects=60, aspect_ratio=2.0, max_diameter=60.0,
+                max_trials=10, size_reduction=0.8, max_reductions=6, exclusion=True, v0=(1.0, 0.0, 0.0),
+                v1=(0.0, 1.0, 0.0))
+
+
+def _trace_rounds(monkeypatch):
+    """Record (first slot, number of slots, diameter) of every exclusion round the sampler runs."""
+    calls = []
+    original = sampler._exclusion_round
+
+    def traced(slots, pending, layer, diameter, *args):
+        calls.append((int(pending[0]), len(pending), float(diameter)))
+        return original(slots, pending, layer, diameter, *args)
+
+    monkeypatch.setattr(sampler, "_exclusion_round", traced)
+    return calls
+
+
+def test_sequential_order_finishes_each_object_before_the_next(monkeypatch):
+    calls = _trace_rounds(monkeypatch)
+    structure = sample_structure([PACKING], 128, 128, seed=3, order="sequential")
+    assert structure.order == "sequential" and all(count == 1 for _, count, _ in calls)
+    slots = [slot for slot, _, _ in calls]
+    assert slots == sorted(slots) and set(slots) == set(range(PACKING.max_objects))  # one object after another
+    for slot in set(slots):  # each object: Max_D, Max_D s_R, ... until placed or given up
+        diameters = [d for s, _, d in calls if s == slot]
+        assert diameters == pytest.approx([PACKING.max_diameter * PACKING.size_reduction**k
+                                           for k in range(len(diameters))])
+    calls.clear()
+    sample_structure([PACKING], 128, 128, seed=3)  # rounds: every object's trial at one diameter first
+    diameters = [d for _, _, d in calls]
+    assert diameters == sorted(diameters, reverse=True) and calls[0][1] == PACKING.max_objects
+
+
+def test_orders_keep_the_rules_are_reproducible_and_differ_only_under_exclusion():
+    for order in sampler.ORDERS:
+        first = sample_structure([PACKING], 128, 128, seed=5, order=order)
+        again = sample_structure([PACKING], 128, 128, seed=5, order=order)
+        assert rule_violations(first)["exclusion"] == 0
+        assert all(np.array_equal(a.polygon, b.polygon) for a, b in zip(first.objects, again.objects))
+        assert np.array_equal(first.trials, again.trials)
+    rounds = sample_structure([PACKING], 128, 128, seed=5)
+    sequential = sample_structure([PACKING], 128, 128, seed=5, order="sequential")
+    assert [item.center for item in rounds.objects] != [item.center for item in sequential.objects]
+    free = replace(PACKING, exclusion=False)  # objects do not interact: one process, sampled identically
+    a = sample_structure([free], 128, 128, seed=5)
+    b = sample_structure([free], 128, 128, seed=5, order="sequential")
+    assert all(np.array_equal(x.polygon, y.polygon) for x, y in zip(a.objects, b.objects))
+    with pytest.raises(ValueError, match="order"):
+        sample_structure([PACKING], 64, 64, seed=0, order="random")
+
+
+@pytest.mark.parametrize("order", ["rounds", "sequential"])
+def test_trials_are_counted_as_the_sequential_process_makes_them(order):
+    n, trials, reductions = 7, 5, 2
+    huge = dict(texels=("ellipse",), max_objects=n, max_diameter=300.0, max_trials=trials, max_reductions=reductions,
+                size_reduction=0.99)
+    # exclusion, disks much wider than the image: the first fits at its first trial, no other ever fits
+    stuck = sample_structure([Layer(exclusion=True, **huge)], 100, 100, seed=0, order=order)
+    assert stuck.placed.tolist() == [1, 1]
+    assert stuck.trials.tolist() == [0, 1 + (n - 1) * trials * (reductions + 1)]
+    # inclusion in the image of the same disks: nothing ever fits
+    none = sample_structure([Layer(inclusion=True, **huge)], 100, 100, seed=0, order=order)
+    assert none.placed.tolist() == [1, 0] and none.trials.tolist() == [0, n * trials * (reductions + 1)]

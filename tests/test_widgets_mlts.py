@@ -229,3 +229,65 @@ def test_size_controls_and_plain_helpers(explorer):
     big = Script(1100, 32, 0, (Layer(max_objects=2, max_diameter=20.0),))
     assert explorer.set_script(big) and explorer.width.max >= 1100 and explorer.width.value == 1100
     assert png_bytes(np.zeros((4, 5, 3))).startswith(PNG_MAGIC)
+
+
+# ---------------------------------------------------------------------------- saving the texture shown
+
+
+def test_save_buttons_write_png_svg_and_json_of_the_texture_shown(tmp_path):
+    from PIL import Image
+
+    from paperlib.mlts import read_texture_svg, render_polygons
+
+    explorer = mlts_explorer(size=SIZE, random_seed=RANDOM_SEED, output_dir=tmp_path / "out")
+    assert explorer.output_dir.value == str(tmp_path / "out")
+    explorer.output_name.value = "mine"
+    for button in (explorer.save_png_button, explorer.save_svg_button, explorer.save_json_button):
+        button.click()
+        assert explorer.error is None, explorer.message
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["mine.json", "mine.png", "mine.svg"]
+    assert "texture saved as" in explorer.status.value
+    pixels = np.asarray(Image.open(tmp_path / "out" / "mine.png"))
+    np.testing.assert_array_equal(pixels, np.round(explorer.image_array * 255).astype(np.uint8))
+    assert Script.load(tmp_path / "out" / "mine.json") == explorer.script
+    polygons, colours, transparency, groups = read_texture_svg(tmp_path / "out" / "mine.svg")
+    assert len(polygons) == len(explorer.structure.objects)
+    again = render_polygons(polygons, colours, (SIZE, SIZE), alphas=transparency, samples=explorer.script.render.samples)
+    # 8-bit colours and opacities; the default script has at most 3 objects over a pixel (see test_mlts_svg.py)
+    assert np.abs(again - explorer.image_array).max() <= 4.5 / 255
+
+
+def test_saving_follows_the_controls_and_keeps_the_shown_texture(tmp_path):
+    explorer = mlts_explorer(size=SIZE, random_seed=RANDOM_SEED, output_dir=tmp_path)
+    explorer.render_seed.value = 5  # a re-render: the saved script follows what is shown
+    explorer.output_dir.value = str(tmp_path / "second")
+    explorer.save_json_button.click()
+    assert Script.load(tmp_path / "second" / "texture.json").render.seed == 5
+    explorer.texels.value = ()  # invalid controls (no texel): the shown (valid) texture is what is saved
+    assert explorer.error is not None
+    path = explorer.export("json", name="kept")
+    assert path is not None and Script.load(path) == explorer.script
+
+
+def test_saving_refuses_figures_light_spot_svg_and_bad_names(tmp_path):
+    from paperlib.widgets.mlts import _repository_root, default_output_dir
+
+    explorer = mlts_explorer(size=SIZE, random_seed=RANDOM_SEED, output_dir=tmp_path)
+    root = _repository_root()
+    assert root is not None and default_output_dir() == root / "build" / "mlts_explorer"
+    explorer.output_dir.value = str(root / "figures" / "alvarez2015_explorer")
+    before = sorted((root / "figures" / "alvarez2015_explorer").iterdir())
+    explorer.save_png_button.click()
+    assert explorer.error is not None and "figures" in explorer.message
+    assert sorted((root / "figures" / "alvarez2015_explorer").iterdir()) == before
+    with pytest.raises(ValueError, match="figures"):
+        mlts_explorer(size=SIZE, output_dir=root / "figures")
+    explorer.output_dir.value = str(tmp_path)
+    explorer.light_distance.value = 40.0
+    assert explorer.export("svg") is None and "light_distance" in explorer.message
+    assert not (tmp_path / "texture.svg").exists()
+    assert explorer.export("png") is not None  # the light spot is in the PNG
+    for name in ("", "../escape", "a/b"):
+        assert explorer.export("json", name=name) is None and "file name" in explorer.message
+    assert explorer.export("gif") is None and "kind" in explorer.message
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["texture.png"]

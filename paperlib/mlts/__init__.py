@@ -5,7 +5,8 @@
   points;
 - :mod:`.layers`: every layer parameter of section 4 (:class:`Layer`);
 - :mod:`.sampler`: the multi-layered object structure of Definition 1 with inclusion and
-  exclusion by trials and diameter reductions (:func:`sample_structure`), and an independent
+  exclusion by trials and diameter reductions (:func:`sample_structure`, in rounds by size or, as an
+  option, object by object), and an independent
   count of rule breaches (:func:`rule_violations`);
 - :mod:`.raster`: the anti-aliased painter (occlusion, transparency, light spot, clipping to
   the father) in numba;
@@ -13,6 +14,9 @@
   tessellation, "keep father inclusion") and :func:`render` of a script;
 - :mod:`.script`: JSON scripts with every hyper-parameter and both seeds, the automatic mode
   :func:`sample_script`;
+- :mod:`.svg`: a rendered texture as SVG (objects as polygons, layers as groups, tessellation
+  cells as polygons) and back (:func:`texture_svg`, :func:`write_texture_svg`,
+  :func:`read_texture_svg`);
 - :mod:`.basic`: the basic processes of Fig. 5 (scaling dead leaves, Voronoi and Poisson-line
   tessellations, IFS fractals).
 
@@ -38,6 +42,7 @@ from .layers import Layer
 from .raster import coverage, paint, render_polygons
 from .render import load_palette, render, render_structure, tessellation_cells
 from .sampler import MLObject, Structure, rule_violations, sample_structure
+from .svg import read_texture_svg, texture_svg, write_texture_svg
 from .script import RenderSettings, Script, sample_script
 from .texels import TEXELS, affine_object, affine_objects, object_diameter, orientation_angle, texel, texel_batch
 
@@ -48,4 +53,5 @@ __all__ = [
     "load_palette", "object_diameter", "orientation_angle", "paint", "poisson_line_tessellation", "render",
     "render_polygons", "render_structure", "rule_violations", "sample_script", "sample_structure",
     "sierpinski_triangle", "tessellation_cells", "texel", "texel_batch", "voronoi_tessellation",
+    "read_texture_svg", "texture_svg", "write_texture_svg",
 ]

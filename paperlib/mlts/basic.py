@@ -48,7 +48,7 @@ import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, positive_number
 
 __all__ = [
     "DEFAULT_PALETTE",
@@ -696,7 +696,16 @@ def _chaos_game(linear, offsets, choices, start):
     return points
 
 
-def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None) -> tuple[np.ndarray, np.ndarray]:
+#: Default budget of :func:`ifs_chaos_game` and :func:`ifs_fractal`: the most chaos-game points (5e7, 1.2 GB of
+#: points and choices). Raise it with the ``max_points`` keyword.
+MAX_IFS_POINTS = 50_000_000
+#: Default budget of :func:`ifs_fractal`: the most image pixels (2**26, a 8192 x 8192 image). Raise it with the
+#: ``max_pixels`` keyword.
+MAX_IFS_PIXELS = 2**26
+
+
+def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None,
+                   max_points: int = MAX_IFS_POINTS) -> tuple[np.ndarray, np.ndarray]:
     """Points of an IFS attractor by the chaos game, with the index of the map that produced each.
 
     The walk starts at the fixed point of map 0, which belongs to the attractor, so every point
@@ -712,6 +721,9 @@ def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None) -> tuple[np.ndarray
         Number of points, >= 1.
     rng : None, int or numpy.random.Generator
         Random source.
+    max_points : int
+        Budget: the most points (default :data:`MAX_IFS_POINTS`), checked before anything is
+        allocated.
 
     Returns
     -------
@@ -726,6 +738,7 @@ def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None) -> tuple[np.ndarray
     """
     linear, offsets, probabilities = _check_ifs(barnsley_fern() if maps is None else maps)
     n_points = _count(n_points, "n_points", 1)
+    check_budget(n_points, budget(max_points, "max_points"), "max_points", "chaos-game points")
     rng = as_generator(rng)
     choices = rng.choice(len(probabilities), size=n_points, p=probabilities / probabilities.sum())
     start = np.linalg.solve(np.eye(2) - linear[0], offsets[0])
@@ -747,7 +760,8 @@ def _fit_to_image(points: np.ndarray, height: int, width: int, margin: float) ->
 
 
 def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0, palette=None,
-                background=(1.0, 1.0, 1.0), rng=None, return_labels=False, return_geometry=False):
+                background=(1.0, 1.0, 1.0), rng=None, return_labels=False, return_geometry=False,
+                max_points: int = MAX_IFS_POINTS, max_pixels: int = MAX_IFS_PIXELS):
     """An IFS fractal drawn by the chaos game, each pixel coloured by the map that produced its points.
 
     The points of :func:`ifs_chaos_game` are fitted into the image (their bounding box scaled to the
@@ -778,6 +792,11 @@ def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0
         Also return the ``(H, W)`` int64 map index per pixel (-1: no point).
     return_geometry : bool
         Also return ``(points in pixel coordinates (n, 2), map_index (n,))``.
+    max_points : int
+        Budget on ``n_points`` (default :data:`MAX_IFS_POINTS`).
+    max_pixels : int
+        Budget: the most image pixels ``H * W`` (default :data:`MAX_IFS_PIXELS`), checked before
+        anything is allocated.
 
     Returns
     -------
@@ -789,6 +808,7 @@ def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0
     Alvarez et al. 2015, section 2.4 and Fig. 5 (right); Barnsley 1988.
     """
     height, width = _check_shape(shape)
+    check_budget(height * width, budget(max_pixels, "max_pixels"), "max_pixels", "image pixels")
     if mode not in ("binary", "density"):
         raise ValueError(f"mode must be 'binary' or 'density', got {mode!r}")
     margin = positive_number(margin, "margin", allow_zero=True)
@@ -797,7 +817,7 @@ def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0
     colours = _check_palette(palette)
     background = _check_colour(background, "background")
     maps = _check_ifs(barnsley_fern() if maps is None else maps)
-    points, map_index = ifs_chaos_game(maps, n_points=n_points, rng=rng)
+    points, map_index = ifs_chaos_game(maps, n_points=n_points, rng=rng, max_points=max_points)
     n_maps = len(maps[2])
     pixels = _fit_to_image(points, height, width, margin)
     cols = np.clip(np.floor(pixels[:, 0]).astype(np.int64), 0, width - 1)

@@ -29,7 +29,7 @@ import operator
 import numba
 import numpy as np
 
-from paperlib._checks import positive_number
+from paperlib._checks import budget, check_budget, positive_number
 
 from .texels import check_polygon
 
@@ -449,8 +449,14 @@ def paint(canvas, polygons, colors, *, alphas=None, lights=None, light_height=No
     return canvas
 
 
+#: Default budget of :func:`render_polygons`: the most anti-aliasing samples ``H * W * samples**2`` of one
+#: image, 2**27 (as :data:`paperlib.mlts.render.MAX_RENDER_SAMPLES`). Raise it with the ``max_samples`` keyword.
+MAX_IMAGE_SAMPLES = 2**27
+
+
 def render_polygons(polygons, colors, shape, *, background=(1.0, 1.0, 1.0), alphas=None, lights=None,
-                    light_height=None, clip=None, samples: int = 4) -> np.ndarray:
+                    light_height=None, clip=None, samples: int = 4,
+                    max_samples: int = MAX_IMAGE_SAMPLES) -> np.ndarray:
     """A new (H, W, 3) float64 image of ``background`` with the polygons painted by :func:`paint`.
 
     Parameters
@@ -461,16 +467,26 @@ def render_polygons(polygons, colors, shape, *, background=(1.0, 1.0, 1.0), alph
         Image size (H, W).
     background : array_like, shape (3,), default white
         RGB background colour in [0, 1].
+    max_samples : int
+        Budget: the most anti-aliasing samples ``H * W * samples**2`` (default
+        :data:`MAX_IMAGE_SAMPLES`), checked before the image is allocated.
 
     Returns
     -------
     ndarray of float64, shape (H, W, 3)
+
+    Raises
+    ------
+    ValueError
+        As :func:`paint`; for a shape that is not two positive integers or above ``max_samples``.
 
     References
     ----------
     .. [1] Alvarez, Gousseau, Morel, Salgado 2015, section 5 (rendering of the geometric structure).
     """
     height, width = _check_shape(shape)
+    check_budget(height * width * _check_samples(samples) ** 2, budget(max_samples, "max_samples"), "max_samples",
+                 "anti-aliasing samples (H x W x samples^2)")
     back = _check_background(background)
     canvas = np.empty((height, width, 3))
     canvas[:] = back

@@ -31,9 +31,9 @@ import numpy as np
 import shapely
 from skimage.measure import label
 
-from .._checks import budget, check_budget
+from .._checks import as_generator, budget, check_budget, integer_in_range
 from ..datasets import photograph, photograph_names
-from .raster import coverage, paint
+from .raster import MAX_SAMPLES, coverage, paint
 from .sampler import Structure, sample_structure
 from .script import RenderSettings, Script
 
@@ -130,7 +130,8 @@ def _light_points(polygons, rng: np.random.Generator) -> np.ndarray:
     return points
 
 
-def tessellation_cells(structure: Structure, samples: int, rng) -> np.ndarray:
+def tessellation_cells(structure: Structure, samples: int, rng=None, *,
+                       max_samples: int = MAX_RENDER_SAMPLES) -> np.ndarray:
     """Cell labels (1..k) of the arrangement of object boundaries (Fig. 15), on a grid ``samples`` x finer.
 
     Each pixel of the fine grid carries the XOR of random 63-bit keys of the objects covering it,
@@ -138,7 +139,38 @@ def tessellation_cells(structure: Structure, samples: int, rng) -> np.ndarray:
     cells. 8 and not 4: a thin face whose pixels touch only at corners stays one cell (with
     4-connectivity such faces split into pieces coloured independently: 65 cells for 55 shapely
     faces in a small test panel, against 55 with 8).
+
+    Parameters
+    ----------
+    structure : Structure
+        From :func:`paperlib.mlts.sample_structure`.
+    samples : int
+        Grid points per pixel side, in [1, :data:`paperlib.mlts.raster.MAX_SAMPLES`].
+    rng : None, int or numpy.random.Generator
+        Source of the objects' random keys (the labels do not depend on it, up to a 2**-63
+        chance of two sets of objects sharing a key).
+    max_samples : int
+        Budget: the most grid points ``width * height * samples**2`` (default
+        :data:`MAX_RENDER_SAMPLES`), checked before anything is allocated.
+
+    Returns
+    -------
+    ndarray of int64, shape (height * samples, width * samples)
+
+    Raises
+    ------
+    ValueError
+        For a structure that is not a Structure, a bad ``samples`` or ``rng``, above ``max_samples``.
+
+    References
+    ----------
+    Alvarez et al. 2015, section 5 ("tessellation") and Fig. 15.
     """
+    if not isinstance(structure, Structure):
+        raise ValueError(f"structure must be a paperlib.mlts.Structure, got {type(structure).__name__}")
+    samples = integer_in_range(samples, "samples", 1, MAX_SAMPLES)
+    _check_render_budget(structure.width, structure.height, samples, max_samples)
+    rng = as_generator(rng)
     shape = (structure.height * samples, structure.width * samples)
     keys = np.zeros(shape, dtype=np.int64)
     object_keys = rng.integers(1, 2**63 - 1, size=len(structure.objects), dtype=np.int64)
@@ -149,12 +181,41 @@ def tessellation_cells(structure: Structure, samples: int, rng) -> np.ndarray:
     return label(keys, background=-1, connectivity=2)
 
 
+def _tessellation_colours(structure: Structure, palette: np.ndarray, samples: int, rng):
+    """The cells of :func:`tessellation_cells` and a palette colour per cell label (the renderer's draws)."""
+    cells = tessellation_cells(structure, samples, rng)
+    return cells, palette[rng.integers(len(palette), size=cells.max() + 1)]
+
+
 def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) -> np.ndarray:
     """Colour each cell of :func:`tessellation_cells` from the palette, averaged to pixels (anti-aliased)."""
-    cells = tessellation_cells(structure, samples, rng)
-    colours = palette[rng.integers(len(palette), size=cells.max() + 1)]
+    cells, colours = _tessellation_colours(structure, palette, samples, rng)
     fine = colours[cells]
     return fine.reshape(structure.height, samples, structure.width, samples, 3).mean(axis=(1, 3))
+
+
+def _render_palette(settings: RenderSettings, palette) -> np.ndarray:
+    """The colours a render uses: ``palette`` when given, else the script's photograph."""
+    return load_palette(settings.palette) if palette is None else _palette_colours(np.asarray(palette), "palette")
+
+
+def _object_paint(structure: Structure, settings: RenderSettings, colours: np.ndarray, rng):
+    """The renderer's per-object draws, in its order: colours, transparencies, light points; and the clips.
+
+    Shared by :func:`render_structure` and the SVG writer (:mod:`paperlib.mlts.svg`), so both colour
+    the same object the same way for one render seed.
+    """
+    polygons = [item.polygon for item in structure.objects]
+    object_colours = colours[rng.integers(len(colours), size=len(polygons))]
+    transparency = rng.uniform(0.0, settings.transparency, size=len(polygons))
+    transparency[0] = 0.0  # the image rectangle is the opaque background
+    lights, height = None, None
+    if settings.light_distance > 0:
+        lights, height = _light_points(polygons, rng), settings.light_distance
+    clip = None
+    if settings.keep_father_inclusion:
+        clip = [None if item.father < 0 else structure.objects[item.father].polygon for item in structure.objects]
+    return polygons, object_colours, transparency, lights, height, clip
 
 
 def render_structure(structure: Structure, settings: RenderSettings, palette=None, *,
@@ -189,20 +250,11 @@ def render_structure(structure: Structure, settings: RenderSettings, palette=Non
     if not isinstance(settings, RenderSettings):
         raise ValueError(f"settings must be RenderSettings, got {type(settings).__name__}")
     _check_render_budget(structure.width, structure.height, settings.samples, max_samples)
-    colours = load_palette(settings.palette) if palette is None else _palette_colours(np.asarray(palette), "palette")
+    colours = _render_palette(settings, palette)
     rng = np.random.default_rng(settings.seed)
     if settings.tessellation:
         return _tessellation(structure, colours, settings.samples, rng)
-    polygons = [item.polygon for item in structure.objects]
-    object_colours = colours[rng.integers(len(colours), size=len(polygons))]
-    transparency = rng.uniform(0.0, settings.transparency, size=len(polygons))
-    transparency[0] = 0.0  # the image rectangle is the opaque background
-    lights, height = None, None
-    if settings.light_distance > 0:
-        lights, height = _light_points(polygons, rng), settings.light_distance
-    clip = None
-    if settings.keep_father_inclusion:
-        clip = [None if item.father < 0 else structure.objects[item.father].polygon for item in structure.objects]
+    polygons, object_colours, transparency, lights, height, clip = _object_paint(structure, settings, colours, rng)
     canvas = np.ones((structure.height, structure.width, 3))
     paint(canvas, polygons, object_colours, alphas=transparency, lights=lights, light_height=height, clip=clip,
           samples=settings.samples)

@@ -28,6 +28,14 @@ each press uses the next seed, and typing a seed draws from it at once. **save s
 **load script** write and read the JSON script at ``path`` (:meth:`Script.save`,
 :meth:`Script.load`).
 
+Below the image: **save PNG**, **save SVG** and **save JSON** write the texture shown (the last
+valid script) as ``<name>.png`` (the image, 8 bits per channel), ``<name>.svg`` (its objects as
+polygons, layers as groups, :func:`paperlib.mlts.write_texture_svg`; refused with a message for a
+light-spot texture, which flat SVG fills cannot show) and ``<name>.json`` (its script) in the
+``output folder`` (default :func:`default_output_dir`, under ``build/``). A folder inside the
+repository's ``figures/`` is refused: only ``make reproduce`` writes there. Files are written
+atomically.
+
 The live image is the texture itself (PNG, at its pixel size); the status line gives, per layer,
 the objects placed and tried, the rule violations counted independently by shapely
 (:func:`paperlib.mlts.rule_violations`) and the seconds of geometry, check, render and PNG.
@@ -36,6 +44,7 @@ Design
 ------
 *Plain methods.* Every control's effect is a method of :class:`MLTSExplorer`
 (:meth:`~MLTSExplorer.update`, :meth:`~MLTSExplorer.randomize`, :meth:`~MLTSExplorer.save`,
+:meth:`~MLTSExplorer.export`,
 :meth:`~MLTSExplorer.load`, :meth:`~MLTSExplorer.add_layer`, :meth:`~MLTSExplorer.remove_layer`,
 :meth:`~MLTSExplorer.set_script`), so tests and notebooks drive the panel without a browser.
 
@@ -90,6 +99,7 @@ from pathlib import Path
 import numpy as np
 
 from paperlib.datasets import photograph_names
+from paperlib._atomic import atomic_path
 from paperlib.mlts import (
     TEXELS,
     Layer,
@@ -100,11 +110,15 @@ from paperlib.mlts import (
     rule_violations,
     sample_script,
     sample_structure,
+    write_texture_svg,
 )
 from paperlib.widgets._base import ExplorerBase
 
-__all__ = ["LAYER_FIELDS", "MAX_TRIED", "MLTSExplorer", "STRUCTURE_CACHE", "default_script", "mlts_explorer",
-           "png_bytes"]
+__all__ = ["EXPORT_FORMATS", "LAYER_FIELDS", "MAX_TRIED", "MLTSExplorer", "STRUCTURE_CACHE", "default_output_dir",
+           "default_script", "mlts_explorer", "png_bytes"]
+
+#: What the explorer's save buttons write (:meth:`MLTSExplorer.export`).
+EXPORT_FORMATS = ("png", "svg", "json")
 
 #: The fields of :class:`paperlib.mlts.Layer`, in the order of the "layer" tab.
 LAYER_FIELDS = ("texels", "max_objects", "aspect_ratio", "max_diameter", "max_trials", "size_reduction",
@@ -137,6 +151,47 @@ def default_script(width: int = 256, height: int = 256) -> Script:
                    exclusion=True, v0=(width / 2, height / 2, 1.0), v1=(width / 2, height / 2, 1.0),
                    vanishing=0.5)
     return Script(width, height, 0, (first, second), RenderSettings(palette="chelsea", seed=0, transparency=0.3))
+
+
+def _repository_root() -> Path | None:
+    """The checkout paperlib runs from (the folder holding ``pyproject.toml`` beside ``paperlib/``), if any."""
+    root = Path(__file__).resolve().parents[2]
+    return root if (root / "pyproject.toml").is_file() and (root / "paperlib").is_dir() else None
+
+
+def default_output_dir() -> Path:
+    """Where the explorer saves textures by default: ``build/mlts_explorer`` of the checkout.
+
+    Returns
+    -------
+    Path
+        ``<repository>/build/mlts_explorer`` when paperlib runs from a checkout, else
+        ``build/mlts_explorer`` under the current folder. Never under ``figures/``, which only
+        ``make reproduce`` writes.
+    """
+    root = _repository_root()
+    return (root if root is not None else Path.cwd()) / "build" / "mlts_explorer"
+
+
+def _check_output_dir(folder) -> Path:
+    """The output folder as a Path, refused (ValueError) when empty or inside the repository's ``figures/``."""
+    if not str(folder).strip():
+        raise ValueError("no output folder given: type a folder in 'output folder'")
+    path = Path(folder).expanduser()
+    root = _repository_root()
+    figures = (root if root is not None else Path.cwd()) / "figures"
+    resolved = path.resolve()
+    if resolved == figures.resolve() or figures.resolve() in resolved.parents:
+        raise ValueError(f"output folder {str(path)!r} is inside {figures}: only `make reproduce` writes figures/; "
+                         "choose a folder under build/")
+    return path
+
+
+def _check_stem(name) -> str:
+    name = str(name).strip()
+    if not name or name in (".", "..") or any(c in name for c in '/\\:*?"<>|\0'):
+        raise ValueError(f"file name {name!r} must be a plain name without folders or the characters /\\:*?\"<>|")
+    return name
 
 
 def png_bytes(image) -> bytes:
@@ -196,6 +251,10 @@ class MLTSExplorer(ExplorerBase):
     ipywidgets controls
         The :class:`paperlib.mlts.RenderSettings` fields.
     random_seed, random_button, path, save_button, load_button : ipywidgets controls
+    output_dir, output_name, save_png_button, save_svg_button, save_json_button : ipywidgets controls
+        Where and under which name :meth:`export` writes the texture shown.
+    exported : dict
+        The files the latest :meth:`export` calls wrote, by format.
     image : ipywidgets.Image
         The texture, as PNG.
     status : ipywidgets.HTML
@@ -220,8 +279,17 @@ class MLTSExplorer(ExplorerBase):
         How many structures were sampled and images rendered.
     """
 
-    def __init__(self, *, random_seed: int, max_tried: int):
+    def __init__(self, *, random_seed: int, max_tried: int, output_dir=None):
         import ipywidgets as w
+
+        _check_counts(random_seed=(random_seed, 0), max_tried=(max_tried, 1))
+        if output_dir is not None:
+            if not isinstance(output_dir, (str, Path)):
+                raise ValueError(f"output_dir must be a str, a Path or None, got {type(output_dir).__name__}")
+            _check_output_dir(output_dir)
+
+        self._output_dir = default_output_dir() if output_dir is None else Path(output_dir)
+        self.exported: dict = {}
 
         self._dpi = 100
         self._max_tried = int(max_tried)
@@ -302,6 +370,16 @@ class MLTSExplorer(ExplorerBase):
         self.load_button = w.Button(description="load script", icon="folder-open")
         self.image = w.Image(format="png", layout=w.Layout(max_width="100%"))
         self.status = w.HTML()
+        self.output_dir = w.Text(value=str(self._output_dir), description="output folder",
+                                 style={"description_width": "90px"}, layout=w.Layout(width="420px"))
+        self.output_name = w.Text(value="texture", description="file name", style={"description_width": "70px"},
+                                  layout=w.Layout(width="220px"))
+        self.save_png_button = w.Button(description="save PNG", icon="image",
+                                        tooltip="the texture shown, as <file name>.png in the output folder")
+        self.save_svg_button = w.Button(description="save SVG", icon="pencil",
+                                        tooltip="the texture shown as vector polygons, <file name>.svg")
+        self.save_json_button = w.Button(description="save JSON", icon="file",
+                                         tooltip="the script of the texture shown, <file name>.json")
 
         geometry = w.VBox([self.width, self.height, self.seed, self.n_layers,
                            w.HBox([self.add_layer_button, self.remove_layer_button])])
@@ -315,6 +393,8 @@ class MLTSExplorer(ExplorerBase):
         self.widget = w.VBox([
             w.HBox([self.random_seed, self.random_button, self.path, self.save_button, self.load_button]),
             w.HBox([self.tabs, w.VBox([self.image], layout=w.Layout(padding="0 0 0 12px"))]),
+            w.HBox([self.output_dir, self.output_name, self.save_png_button, self.save_svg_button,
+                    self.save_json_button]),
             self.status,
         ])
 
@@ -346,6 +426,9 @@ class MLTSExplorer(ExplorerBase):
         self.random_button.on_click(lambda _: self.randomize())
         self.save_button.on_click(lambda _: self.save())
         self.load_button.on_click(lambda _: self.load())
+        self.save_png_button.on_click(lambda _: self.export("png"))
+        self.save_svg_button.on_click(lambda _: self.export("svg"))
+        self.save_json_button.on_click(lambda _: self.export("json"))
 
     # ------------------------------------------------------------------ controls <-> script
 
@@ -596,6 +679,53 @@ class MLTSExplorer(ExplorerBase):
             return False
         return self.set_script(script, f"loaded from {path}", [f"script loaded from {path}"])
 
+    def export(self, kind: str, folder=None, name=None) -> Path | None:
+        """Save the texture shown as PNG, SVG or its JSON script in the output folder.
+
+        Parameters
+        ----------
+        kind : {"png", "svg", "json"}
+            PNG: the image shown (8 bits per channel). SVG: its objects as polygons
+            (:func:`paperlib.mlts.write_texture_svg`; a light-spot texture is refused). JSON: its
+            script (:meth:`Script.save`).
+        folder : str or Path, optional
+            Default: the ``output folder`` field. Created if missing; refused inside ``figures/``.
+        name : str, optional
+            File name without extension; default: the ``file name`` field.
+
+        Returns
+        -------
+        Path or None
+            The file written (also in ``exported[kind]``); None on failure, with the reason in
+            ``message`` (nothing is raised, no partial file is left).
+        """
+        try:
+            if kind not in EXPORT_FORMATS:
+                raise ValueError(f"kind must be one of {EXPORT_FORMATS}, got {kind!r}")
+            if self.script is None:
+                raise ValueError("no texture to save yet")
+            folder = _check_output_dir(self.output_dir.value if folder is None else folder)
+            path = folder / f"{_check_stem(self.output_name.value if name is None else name)}.{kind}"
+            if kind == "png":
+                from PIL import Image
+
+                pixels = np.round(np.clip(self.image_array, 0.0, 1.0) * 255).astype(np.uint8)
+                with atomic_path(path) as temporary:
+                    Image.fromarray(pixels).save(temporary, format="PNG", optimize=True)
+            elif kind == "svg":
+                write_texture_svg(self.structure, self.script.render, path,
+                                  palette=self._palette(self.script.render.palette))
+            else:
+                self.script.save(path)
+        except (OSError, ValueError, TypeError) as error:
+            self.error, self.message = error, f"save {kind} failed: {error}"
+            self._show_status()
+            return None
+        self.exported[kind] = path
+        self.error, self.message = None, f"texture saved as {path}"
+        self._show_status()
+        return path
+
     def set_layer_count(self, count: int) -> bool:
         """Set ``N_L`` (image rectangle included): add layers at the end or remove the last ones."""
         count = int(count)
@@ -685,7 +815,15 @@ class MLTSExplorer(ExplorerBase):
         return figure
 
 
-def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tried: int = MAX_TRIED) -> MLTSExplorer:
+def _check_counts(**values) -> None:
+    """A ValueError naming the parameter unless each ``name=(value, least)`` is an integer >= least."""
+    for name, (value, low) in values.items():
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+            raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+
+
+def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tried: int = MAX_TRIED,
+                  output_dir=None) -> MLTSExplorer:
     """An interactive explorer of Alvarez 2015's multi-layer texture sampler.
 
     Builds the controls, shows ``script`` and returns the explorer; ``display(explorer)`` (or
@@ -703,6 +841,9 @@ def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tri
     max_tried : int
         Largest number of objects one layer may try (product of Max_O down to it); bigger
         scripts are refused with a message.
+    output_dir : str, Path or None
+        Folder of the **save PNG / SVG / JSON** buttons (default :func:`default_output_dir`, under
+        ``build/``); refused inside the repository's ``figures/``.
 
     Returns
     -------
@@ -719,15 +860,13 @@ def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tri
     Alvarez et al. (2015), sections 4 (layer parameters, automatic and supervised modes, scripts)
     and 5.4 (rendering parameters).
     """
-    for name, value, low in (("size", size, 1), ("random_seed", random_seed, 0), ("max_tried", max_tried, 1)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-            raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    _check_counts(size=(size, 1), random_seed=(random_seed, 0), max_tried=(max_tried, 1))
     if script is None:
         script = default_script(int(size), int(size))
     elif isinstance(script, (str, Path)):
         script = Script.load(script)
     elif not isinstance(script, Script):
         raise ValueError(f"script must be a paperlib.mlts.Script, a path or None, got {type(script).__name__}")
-    explorer = MLTSExplorer(random_seed=int(random_seed), max_tried=int(max_tried))
+    explorer = MLTSExplorer(random_seed=int(random_seed), max_tried=int(max_tried), output_dir=output_dir)
     explorer.set_script(script, "initial script")
     return explorer
