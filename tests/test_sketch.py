@@ -5,7 +5,9 @@ import pytest
 
 from paperlib.sketch import (
     check_curve,
+    close_angles,
     close_curve,
+    coarse_ring,
     coarsen,
     copied_runs,
     crossing_segments,
@@ -26,7 +28,7 @@ from paperlib.sketch import (
     train,
     wrap_angle,
 )
-from paperlib.datasets import hand_drawn_curve
+from paperlib.datasets import glyph_outline, hand_drawn_curve
 from paperlib.sketch._kernels import steer
 from paperlib.sketch.model import SHARPNESS
 
@@ -343,6 +345,80 @@ def test_closure_option_closes_the_curve(model):
     steps = np.hypot(*np.diff(gap, axis=0).T)
     assert steps[-1] == pytest.approx(steps[:-1].mean(), rel=0.5)   # the last segment is an ordinary one
     assert plain.closing_gap == closed.closing_gap > 0
+
+
+@pytest.mark.parametrize("closure", ["turn", "distribute"])
+def test_closures_close_the_curve_and_turning_keeps_the_spacing(model, closure):
+    sketch = wiggly(lobes=2, depth=0.0)
+    result = elaborate(model, sketch, n_samples=200, rng=1, closure=closure, match_extent=False, untangle=False)
+    steps = np.hypot(*np.diff(np.vstack([result.points, result.points[:1]]), axis=0).T)
+    assert result.closing_gap > 0.005
+    if closure == "turn":   # every segment keeps the sample spacing, the last (closing) one included
+        np.testing.assert_allclose(steps, steps.mean(), rtol=1e-9)
+    else:                   # shifting every segment by the same vector changes their lengths
+        assert steps.std() / steps.mean() > 1e-3
+
+
+def test_close_angles_is_the_smallest_smooth_change_that_closes():
+    theta = tangent_angles(resample_curve(wiggly(), 200, closed=True), closed=True)
+    bent = theta + 0.1 * np.sin(np.linspace(0.0, np.pi, theta.size))   # an open curve
+    closed = close_angles(bent)
+    moves = np.column_stack([np.cos(closed), np.sin(closed)])
+    assert np.hypot(*moves.sum(axis=0)) < 1e-9
+    delta = closed - bent
+    # least squares over the closure equations: delta = a cos(theta) + b sin(theta), for the final angles
+    basis = np.column_stack([np.cos(closed), np.sin(closed)])
+    fit, *_ = np.linalg.lstsq(basis, delta, rcond=None)
+    assert np.abs(basis @ fit - delta).max() < 0.1 * np.abs(delta).max()
+    assert np.abs(close_angles(theta) - theta).max() < 0.01   # a closed curve hardly changes
+    with pytest.raises(ValueError, match="too far from closed"):
+        close_angles(np.zeros(50))                                     # a straight line cannot close
+    with pytest.raises(ValueError, match="at least 3"):
+        close_angles([0.0, 1.0])
+
+
+def test_coarse_ring_is_simple_and_closed_by_turning_when_it_can_be():
+    theta = tangent_angles(resample_curve(wiggly(), 200, closed=True), closed=True)
+    smooth = multiscale_angles(theta, 4, filter_weights(9), closed=True)[-1]
+    ring = coarse_ring(smooth, 0.03, (0.0, 0.0))
+    steps = np.hypot(*np.diff(np.vstack([ring, ring[:1]]), axis=0).T)
+    assert len(ring) == 200 and np.ptp(steps) < 1e-9 and not crossing_segments(ring, closed=True).size
+    straight = coarse_ring(np.zeros(20), 1.0, (0.0, 0.0))                 # cannot turn closed: distributed
+    np.testing.assert_allclose(straight, 0.0, atol=1e-12)
+
+
+def test_every_spiky_training_curve_is_reconstructed_with_closed_steering():
+    """Fig. 6 (top centre): the sketch of a training curve is elaborated from that curve alone. Filtered angles
+    of spiky curves do not close, so with the paper's steering (the filtered angles) the closed sketch
+    disagrees with its own states and the chain leaves the curve."""
+    curves = [glyph_outline(name, 512) for name in ("club", "floral_heart", "spade", "heart", "shamrock")]
+    fractions = {}
+    for close_steering in (True, False):
+        model = train(curves, order=10, scales=4, filter_width=5, samples_per_curve=128, neighbours=8,
+                      close_steering=close_steering)
+        fractions[close_steering] = [
+            np.mean(model.curve[elaborate(model, coarsen(curve, model), n_samples=128, sigma=0.05,
+                                          window=0.05).states] == k) for k, curve in enumerate(curves)]
+        if close_steering:
+            sketch = resample_curve(coarsen(curves[0], model), 128, closed=True)
+            np.testing.assert_allclose(wrap_angle(tangent_angles(sketch, closed=True) - model.steering[:128]), 0.0,
+                                       atol=1e-9)
+    assert min(fractions[True]) == 1.0
+    assert min(fractions[False]) < 1.0
+
+
+def test_training_at_each_curves_own_vertex_count():
+    curves = [wiggly(n=120), wiggly(n=200, lobes=4), circle(90)]
+    model = train(curves, order=8, scales=3, samples_per_curve="vertices")
+    np.testing.assert_array_equal(model.curve_samples, [120, 200, 90])
+    assert len(model) == 410 and [len(c) for c in model.curves] == [120, 200, 90]
+    assert model.position[model.curve == 2].max() == pytest.approx(89 / 90)
+    assert len(coarsen(curves[1], model)) == 200                         # a sketch at the curve's own count
+    assert copied_runs(model, np.arange(120, 320), slack=1).max() == 200
+    with pytest.raises(ValueError, match="at least 10 vertices"):
+        train([wiggly(), circle(9)], order=8, scales=3, samples_per_curve="vertices")
+    with pytest.raises(ValueError, match="samples_per_curve must be an integer or 'vertices'"):
+        train(curves, samples_per_curve="native")
 
 
 def test_match_size_moves_and_scales_onto_the_reference():

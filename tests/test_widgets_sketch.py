@@ -33,7 +33,7 @@ from paperlib.widgets.sketch import (
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 SAMPLES = 300
 SMALL = dict(n_samples=SAMPLES, figsize=(6, 2.5), dpi=40)
-DEFAULTS = dict(training="coastlines", order=20, scales=5, sigma=0.1, top=20, mode="max", closure=True,
+DEFAULTS = dict(training="coastlines", order=20, scales=5, sigma=0.1, top=20, mode="max", closure="turn",
                 use_window=False, window=0.1, samples=SAMPLES, seed=0, source="preset", preset="coastline_41")
 #: Hausdorff distance between a drawing and its elaboration, over the drawing's perimeter. Measured on the
 #: ellipse below with the 40 coastlines (order 20, 5 scales): 0.043 at the most probable states, 0.021-0.047 over
@@ -148,7 +148,7 @@ def test_elaboration_controls_rerun_only_the_elaboration(explorer):
     assert explorer.points_hash == base
     hashes = [base]
     for control, value in ((explorer.sigma, 0.3), (explorer.top, 5), (explorer.mode, "sample"),
-                           (explorer.use_window, True), (explorer.closure, False)):
+                           (explorer.use_window, True), (explorer.closure, "none")):
         control.value = value  # each one changes the elaboration
         assert explorer.error is None and explorer.times["train"] == 0.0
         hashes.append(explorer.points_hash)
@@ -159,13 +159,14 @@ def test_elaboration_controls_rerun_only_the_elaboration(explorer):
     assert explorer.calls["train"] == trained and explorer.calls["elaborate"] == runs + 7
 
 
-def test_closure_distributes_the_gap_without_changing_the_chain(explorer):
+def test_closure_closes_the_gap_without_changing_the_chain(explorer):
     gap, states = explorer.elaboration.closing_gap, explorer.elaboration.states
-    assert "closure distribute" in explorer.summary
-    explorer.closure.value = False
-    assert explorer.elaboration.closing_gap == gap > 0  # measured before the correction
-    np.testing.assert_array_equal(explorer.elaboration.states, states)
-    assert "closure none" in explorer.summary
+    assert "closure turn" in explorer.summary
+    for closure in ("distribute", "none"):
+        explorer.closure.value = closure
+        assert explorer.elaboration.closing_gap == gap > 0  # measured before the correction
+        np.testing.assert_array_equal(explorer.elaboration.states, states)
+        assert f"closure {closure}" in explorer.summary
 
 
 def test_order_and_scales_retrain_and_models_are_cached(explorer):

@@ -12,7 +12,9 @@
 
 from .curves import (
     check_curve,
+    close_angles,
     close_curve,
+    coarse_ring,
     filter_weights,
     gyration_radius,
     integrate_angles,
@@ -38,7 +40,9 @@ __all__ = [
     "Elaboration",
     "SketchModel",
     "check_curve",
+    "close_angles",
     "close_curve",
+    "coarse_ring",
     "coarsen",
     "copied_runs",
     "crossing_segments",

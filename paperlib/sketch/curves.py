@@ -30,6 +30,8 @@ from ..geometry import as_points, resample_closed_curve, resample_open_curve
 
 __all__ = [
     "check_curve",
+    "close_angles",
+    "coarse_ring",
     "close_curve",
     "filter_weights",
     "gyration_radius",
@@ -47,6 +49,8 @@ __all__ = [
 #: Default budget of :func:`multiscale_angles`: the most values (scales x samples) it may hold, 2**26 doubles
 #: (512 MiB). Raise it with the ``max_values`` keyword.
 MAX_SCALE_VALUES = 2**26
+#: The widest built-in filter: wider than any curve's samples would average it flat many times over.
+MAX_FILTER_WIDTH = 2**16 + 1
 
 
 def wrap_angle(angle):
@@ -119,9 +123,16 @@ def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve")
     Raises
     ------
     ValueError
-        If the resampled curve still crosses itself (ask for more samples).
+        If ``points`` is not a finite ``(n, 2)`` array of at least 3 points (closed) or 2 (open), ``n_points`` is
+        not an integer of at least that many, or the resampled curve still crosses itself (ask for more samples).
     """
+    closed = check_flag(closed, "closed")
+    least = 3 if closed else 2
+    points = point_array(points, "points", min_points=least)
+    n_points = integer_at_least(n_points, "n_points", least)
     line = shapely.LinearRing(points) if closed else shapely.LineString(points)
+    if line.length == 0:
+        raise ValueError("points are all one point: a curve needs length to be resampled")
     for fraction in (0.0, 0.25, 0.5, 1.0):
         simplified = np.asarray(line.simplify(fraction * line.length / n_points, preserve_topology=True).coords)
         resampled = resample_curve(simplified[:-1] if closed else simplified, n_points, closed=closed)
@@ -135,8 +146,16 @@ def tangent_angles(points, *, closed: bool) -> np.ndarray:
 
     Returns ``n`` angles for a closed curve of ``n`` samples (the last segment joins the last sample to the
     first), ``n - 1`` for an open one.
+
+    Raises
+    ------
+    ValueError
+        If ``points`` is not a finite ``(n, 2)`` array of at least 2 points, or two successive points coincide.
+    TypeError
+        If ``closed`` is not True or False.
     """
-    points = np.asarray(points, dtype=np.float64)
+    closed = check_flag(closed, "closed")
+    points = point_array(points, "points", min_points=2)
     path = np.vstack([points, points[:1]]) if closed else points
     steps = np.diff(path, axis=0)
     if np.any(np.all(steps == 0.0, axis=1)):
@@ -174,8 +193,8 @@ def filter_weights(filter_width: int = 9, kernel="uniform") -> np.ndarray:
     if isinstance(kernel, str):
         if isinstance(filter_width, bool) or not isinstance(filter_width, (int, np.integer)):
             raise ValueError(f"filter_width must be an odd integer >= 1, got {filter_width!r}")
-        if filter_width < 1 or filter_width % 2 == 0:
-            raise ValueError(f"filter_width must be an odd integer >= 1, got {filter_width!r}")
+        if filter_width < 1 or filter_width % 2 == 0 or filter_width > MAX_FILTER_WIDTH:
+            raise ValueError(f"filter_width must be an odd integer in [1, {MAX_FILTER_WIDTH}], got {filter_width!r}")
         if kernel == "uniform":
             weights = np.ones(filter_width)
         elif kernel == "binomial":
@@ -313,13 +332,81 @@ def match_size(points, reference) -> np.ndarray:
     return (points - centre) * scale + reference.mean(axis=0)
 
 
+#: Newton iterations of :func:`close_angles` and the closing error (relative to the curve's length) it stops at.
+CLOSE_ITERATIONS, CLOSE_TOLERANCE = 50, 1e-12
+
+
+def close_angles(theta) -> np.ndarray:
+    """The smallest change of a closed curve's tangent angles that closes it with the sample spacing kept.
+
+    Segments of equal length in the directions ``theta`` end where they started only if
+    ``sum exp(i theta) = 0``; a curve built from filtered or instantiated angles does not. This returns
+    ``theta + delta`` with the least-squares ``delta`` that closes it (Gauss-Newton on the two closure
+    equations, minimum-norm steps): ``delta`` is a smooth function of the direction (``a sin theta + b cos theta``
+    to first order), so no kink appears, and every segment keeps its length, so the samples stay equally
+    spaced in arc length (unlike :func:`close_curve`, which shifts every segment by the same vector and so
+    changes their lengths).
+
+    Raises
+    ------
+    ValueError
+        If ``theta`` is not a finite 1-D array of at least 3 angles, or the curve cannot be closed by turning
+        its segments (all of them nearly parallel).
+    """
+    theta = finite_array(theta, "theta", ndim=1).copy()
+    if theta.size < 3:
+        raise ValueError(f"theta must hold at least 3 angles to close a curve, got {theta.size}")
+    for _ in range(CLOSE_ITERATIONS):
+        cos, sin = np.cos(theta), np.sin(theta)
+        gap = np.array([cos.sum(), sin.sum()])
+        if np.hypot(*gap) <= CLOSE_TOLERANCE * theta.size:
+            return theta
+        jacobian = np.vstack([-sin, cos])
+        normal = jacobian @ jacobian.T
+        if np.linalg.cond(normal) > 1e12:
+            break
+        theta -= jacobian.T @ np.linalg.solve(normal, gap)
+    raise ValueError("theta cannot be closed by turning its segments: the curve is too far from closed")
+
+
+def coarse_ring(theta, step: float, start) -> np.ndarray:
+    """The closed curve of a closed curve's coarse angles: what a sketch of the curve looks like (``n`` points).
+
+    Filtered angles of a closed curve do not integrate to a closed curve (a rounded spike no longer returns
+    where it left), so they are closed: by turning the segments (:func:`close_angles`; equal spacing kept, so
+    the ring's own tangent angles are the closed angles), or, when that crosses itself or cannot close, by
+    distributing the gap (:func:`close_curve`). :func:`.steering.coarsen` draws sketches with it, and
+    :func:`.model.train` compares the sketch with the training curves' steering scale as it draws them.
+
+    Raises
+    ------
+    ValueError
+        If ``theta`` is not a finite 1-D array of at least 3 angles, ``step`` not positive or ``start`` not a
+        finite point.
+    """
+    theta = finite_array(theta, "theta", ndim=1)
+    try:
+        ring = integrate_angles(close_angles(theta), step, start=start)[:-1]
+        if shapely.LinearRing(ring).is_simple:
+            return ring
+    except ValueError:   # too far from closed to turn closed
+        pass
+    return close_curve(integrate_angles(theta, step, start=start))
+
+
 def close_curve(path: np.ndarray) -> np.ndarray:
     """Distribute a closed curve's closing error along it (our correction of the paper's closure problem).
 
     ``path`` holds ``n + 1`` points whose last should equal the first. Point ``k`` moves by ``-k / n`` of the
     gap, so the curve closes exactly, the start stays, and every segment changes by the same small vector.
     Returns the ``n`` points of the closed ring (the repeated end dropped).
+
+    Raises
+    ------
+    ValueError
+        If ``path`` is not a finite ``(n + 1, 2)`` array with at least 2 points.
     """
+    path = point_array(path, "path", min_points=2)
     gap = path[-1] - path[0]
     n = len(path) - 1
     return (path - np.outer(np.arange(n + 1) / n, gap))[:-1]

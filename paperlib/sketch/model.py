@@ -1,7 +1,9 @@
 """Learning a class of curves: multi-scale, multi-order states and their similarity (Simhon 2001, section 3).
 
 Each training curve is resampled at ``samples_per_curve`` points equally spaced in arc length (so curves of
-every size have the same number of states), and its tangent angle is analysed at ``scales`` scales
+every size have the same number of states), or at its own vertex count (``samples_per_curve="vertices"``: each
+curve keeps the sample spacing it was digitised at, so the chain learns the detail at the scale a curve of the
+class is drawn at), and its tangent angle is analysed at ``scales`` scales
 (:mod:`.curves`). The *state* at sample ``t`` is the ``scales x order`` matrix
 ``gamma(t, s, tau) = theta_s(t - tau)``: the curve's recent history at every scale (the paper's Figure 1;
 ``A = 1`` attribute, the tangent angle). Closed curves are read cyclically, so every sample has a state and a
@@ -54,11 +56,12 @@ from .._checks import check_budget, finite_array, integer_at_least, positive_num
 from ._kernels import rank_by_similarity
 from .curves import (
     check_curve,
-    close_curve,
+    coarse_ring,
     filter_weights,
     gyration_radius,
     integrate_angles,
     multiscale_angles,
+    resample_curve,
     resample_simple,
     tangent_angles,
     _wrap,
@@ -97,14 +100,20 @@ class SketchModel:
         Whether the filter is causal and the history of coarser scales subsampled (:func:`train`).
     closed : bool
         Whether the training curves were read cyclically.
-    samples_per_curve : int
-        Samples of each resampled training curve.
+    samples_per_curve : int or "vertices"
+        Samples of each resampled training curve, as :func:`train` was given it.
+    curve_samples : ndarray of int, shape (curves,)
+        Samples of each resampled training curve (all ``samples_per_curve`` unless ``"vertices"``).
     curves : tuple of ndarray
-        The resampled training curves, ``(samples_per_curve, 2)`` each.
+        The resampled training curves, ``(curve_samples[k], 2)`` each.
     states : ndarray, shape (N, scales, order)
         The states ``gamma(t, s, tau) = theta_s(t - tau)``, unwrapped along each curve.
     angles : ndarray, shape (N, scales)
         Each state's current angle at every scale (``states[:, :, 0]``).
+    steering : ndarray, shape (N,)
+        Each state's steering angle, which eq. (5) compares with the sketch: the angle at the steering scale
+        (``close_steering=False``, the paper), or, for closed classes, the angle that scale's curve has once
+        closed as a sketch of the training curve is (:func:`.curves.coarse_ring`; see :func:`train`).
     curve, sample : ndarray of int, shape (N,)
         Training curve and sample index of each state.
     position : ndarray, shape (N,)
@@ -137,10 +146,12 @@ class SketchModel:
     causal: bool
     subsample: bool
     closed: bool
-    samples_per_curve: int
+    samples_per_curve: int | str
+    curve_samples: np.ndarray
     curves: tuple
     states: np.ndarray
     angles: np.ndarray
+    steering: np.ndarray
     curve: np.ndarray
     sample: np.ndarray
     position: np.ndarray
@@ -156,8 +167,8 @@ class SketchModel:
 
     @property
     def steering_angles(self) -> np.ndarray:
-        """Each state's angle at the steering scale: what eq. (5) compares with the sketch."""
-        return self.angles[:, self.steering_scale]
+        """Each state's steering angle (:attr:`steering`): what eq. (5) compares with the sketch."""
+        return self.steering
 
 
 def default_weights(scales: int, order: int, *, max_values: int = MAX_STATE_VALUES) -> np.ndarray:
@@ -248,8 +259,9 @@ def train(
     transitions: str = "sharp",
     causal: bool = False,
     subsample: bool = False,
-    samples_per_curve: int = 256,
+    samples_per_curve: int | str = 256,
     closed: bool = True,
+    close_steering: bool = True,
     max_values: int = MAX_STATE_VALUES,
 ) -> SketchModel:
     """Learn a class of curves (section 3).
@@ -259,7 +271,7 @@ def train(
     curves : sequence of array_like, each (n_i, 2)
         The training curves (closed rings without a repeated end point when ``closed``): simple, without
         repeated points. Their sizes do not matter: each is simplified at its sample spacing and resampled
-        to ``samples_per_curve`` samples (:func:`.curves.resample_simple`).
+        to ``samples_per_curve`` samples (:func:`.curves.resample_simple`), or to its own vertex count.
     order : int
         The history O of a state (>= 1; the paper: 20).
     scales : int
@@ -285,12 +297,22 @@ def train(
         Read the history of scale ``s`` every ``2 ** s`` samples (the paper's Psi *"requires less sampling
         points"* at coarser scales, eq. 2: a state of order O then spans ``(O - 1) 2 ** (S - 1)`` samples at the
         coarsest scale) instead of every sample at every scale.
-    samples_per_curve : int
-        Samples per training curve (> order).
+    samples_per_curve : int or "vertices"
+        Samples per training curve (> order + 1), or ``"vertices"``: each curve at its own vertex count, equally
+        spaced in arc length (every curve then needs more than ``order + 1`` vertices). The paper does not say;
+        a fixed count reads a large curve at a coarser spacing than a small one, so the detail the chain
+        learns from large curves is coarser than the detail of the curves it is asked to elaborate.
     closed : bool
         Whether the training curves are closed (read cyclically).
-    max_values : int
-        Budget: the most angle values the state table may hold (curves x samples_per_curve x scales x order;
+    close_steering : bool
+        For closed classes, compare the sketch with each training curve's steering scale *closed*, as a
+        sketch of the curve is (:func:`.curves.coarse_ring`, the curve :func:`.steering.coarsen` draws), not
+        with the filtered angles themselves (``False``, the paper). Filtered angles do not integrate to a
+        closed curve (a rounded spike does not return where it left), so no closed sketch has them: the
+        sketch of a spiky training curve then differs from its own states by up to 1 rad, and the chain
+        leaves the curve there (Fig. 6's exact reconstruction failed on 6 of 14 distinct outlines). A steering
+        scale of 0 is the curve's own angle, which needs no closing. : int
+        Budget: the most angle values the state table may hold (total samples x scales x order;
         default :data:`MAX_STATE_VALUES`), checked before any curve is resampled.
 
     Returns
@@ -307,51 +329,68 @@ def train(
     order = integer_at_least(order, "order", 1)
     scales = integer_at_least(scales, "scales", 1)
     neighbours = integer_at_least(neighbours, "neighbours", 1)
-    samples = integer_at_least(samples_per_curve, "samples_per_curve", order + 2)
-    if scales > samples:
-        raise ValueError(f"scales must be at most samples_per_curve ({samples}), got {scales}")
     max_values = integer_at_least(max_values, "max_values", 1)
     steering_scale = scales - 1 if steering_scale is None else integer_at_least(steering_scale, "steering_scale", 0)
     if steering_scale >= scales:
         raise ValueError(f"steering_scale must be below scales ({scales}), got {steering_scale}")
     similarity_sigma = positive_number(similarity_sigma, "similarity_sigma")
-    for flag, name in ((causal, "causal"), (subsample, "subsample")):
+    for flag, name in ((causal, "causal"), (subsample, "subsample"), (close_steering, "close_steering")):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError(f"{name} must be True or False, got {flag!r}")
     if transitions not in TRANSITIONS:
         raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
-    check_budget(samples * scales * order, max_values, "max_values", "angle values per curve")
+    curves = [check_curve(curve, closed=closed, name=f"training curve {k}") for k, curve in enumerate(_curve_list(curves))]
+    counts = _sample_counts(samples_per_curve, curves, order, scales)
     weights = _check_weights(weights, scales, order)
     taps = filter_weights(filter_width, kernel)
-    curves = _curve_list(curves)
-    check_budget(len(curves) * samples * scales * order, max_values, "max_values", "state angle values")
+    check_budget(int(counts.max()) * scales * order, max_values, "max_values", "angle values per curve")
+    check_budget(int(counts.sum()) * scales * order, max_values, "max_values", "state angle values")
 
     angle_blocks, resampled = [], []
-    for k, curve in enumerate(curves):
-        curve = check_curve(curve, closed=closed, name=f"training curve {k}")
-        angles, points = _curve_angles(curve, samples, scales, taps, closed, causal, f"training curve {k}")
+    for k, (curve, samples) in enumerate(zip(curves, counts)):
+        angles, points = _curve_angles(curve, int(samples), scales, taps, closed, causal, f"training curve {k}")
         angle_blocks.append(angles)
         resampled.append(points)
     strides = 2 ** np.arange(scales) if subsample else np.ones(scales, dtype=np.int64)
-    if not closed and samples - 1 <= (order - 1) * int(strides[-1]):
-        raise ValueError(f"open curves of {samples} samples hold no state of order {order} with subsample=True "
+    if not closed and counts.min() - 1 <= (order - 1) * int(strides[-1]):
+        raise ValueError(f"open curves of {counts.min()} samples hold no state of order {order} with subsample=True "
                          f"(the coarsest scale's history spans {(order - 1) * int(strides[-1]) + 1} samples)")
     table = _state_table(angle_blocks, order, closed, strides)
+    coarse = _coarse_curves(resampled, angle_blocks, steering_scale, closed)
     neighbour_index, similarity = _most_similar(table["states"], table["angles"][:, steering_scale],
                                                 weights, similarity_sigma, neighbours)
     return SketchModel(
         order=order, scales=scales, steering_scale=steering_scale, weights=weights,
         similarity_sigma=similarity_sigma, filter=taps, causal=bool(causal), subsample=bool(subsample),
-        closed=closed, samples_per_curve=samples,
-        curves=tuple(resampled), states=table["states"], angles=table["angles"], curve=table["curve"], sample=table["sample"],
+        closed=closed, samples_per_curve=samples_per_curve, curve_samples=counts,
+        curves=tuple(resampled), states=table["states"], angles=table["angles"],
+        steering=_steering(coarse, angle_blocks, table, steering_scale, closed and close_steering and steering_scale > 0),
+        curve=table["curve"], sample=table["sample"],
         position=table["position"], successor=table["successor"], neighbours=neighbour_index,
         similarity=similarity, transitions=transitions,
-        transition=_transition_weights(neighbour_index, similarity, table, transitions, order, samples, closed),
-        extent_ratio=_extent_ratio(resampled, angle_blocks, steering_scale, closed),
+        transition=_transition_weights(neighbour_index, similarity, table, transitions, order, counts, closed),
+        extent_ratio=float(np.median([gyration_radius(c) / gyration_radius(p) for c, p in zip(coarse, resampled)])),
     )
 
 
-def _transition_weights(neighbours, similarity, table: dict, transitions: str, order: int, samples: int,
+def _sample_counts(samples_per_curve, curves: list, order: int, scales: int) -> np.ndarray:
+    """Samples of each training curve: ``samples_per_curve`` for all, or each curve's vertex count."""
+    if isinstance(samples_per_curve, str):
+        if samples_per_curve != "vertices":
+            raise ValueError(f"samples_per_curve must be an integer or 'vertices', got {samples_per_curve!r}")
+        counts = np.array([len(curve) for curve in curves], dtype=np.int64)
+        if counts.min() < max(order + 2, scales):
+            raise ValueError(f"with samples_per_curve='vertices' every training curve needs at least "
+                             f"{max(order + 2, scales)} vertices (order + 2 and scales), training curve "
+                             f"{int(counts.argmin())} has {counts.min()}")
+        return counts
+    samples = integer_at_least(samples_per_curve, "samples_per_curve", order + 2)
+    if scales > samples:
+        raise ValueError(f"scales must be at most samples_per_curve ({samples}), got {scales}")
+    return np.full(len(curves), samples, dtype=np.int64)
+
+
+def _transition_weights(neighbours, similarity, table: dict, transitions: str, order: int, counts: np.ndarray,
                         closed: bool) -> np.ndarray:
     """The weight of each move to a similar state's successor (see the module docstring)."""
     if transitions == "paper":
@@ -360,6 +399,7 @@ def _transition_weights(neighbours, similarity, table: dict, transitions: str, o
     state = np.arange(len(neighbours))[:, None]
     gap = np.abs(table["sample"][neighbours] - table["sample"][state])
     if closed:
+        samples = counts[table["curve"]][:, None]
         gap = np.minimum(gap, samples - gap)
     # a state's neighbours on its own curve within its history are similar because their histories overlap,
     # not because they continue it otherwise: moving to their successors would repeat, skip or go back
@@ -368,15 +408,32 @@ def _transition_weights(neighbours, similarity, table: dict, transitions: str, o
     return weights
 
 
-def _extent_ratio(curves, angle_blocks, steering_scale: int, closed: bool) -> float:
-    """Median ratio of the steering-scale curve's radius of gyration to the detailed curve's (see the model)."""
-    ratios = []
+def _mean_step(points: np.ndarray, closed: bool) -> float:
+    return float(np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T).mean())
+
+
+def _coarse_curves(curves, angle_blocks, steering_scale: int, closed: bool) -> list:
+    """Each training curve at the steering scale: its angles there integrated back with its own sample spacing
+    (closed as :func:`.curves.coarse_ring` closes a sketch)."""
+    coarse = []
     for points, angles in zip(curves, angle_blocks):
-        step = float(np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T).mean())
-        coarse = integrate_angles(angles[:, steering_scale], step, start=points[0])
-        coarse = close_curve(coarse) if closed else coarse
-        ratios.append(gyration_radius(coarse) / gyration_radius(points))
-    return float(np.median(ratios))
+        theta, step = angles[:, steering_scale], _mean_step(points, closed)
+        coarse.append(coarse_ring(theta, step, points[0]) if closed else integrate_angles(theta, step, points[0]))
+    return coarse
+
+
+def _steering(coarse, angle_blocks, table: dict, steering_scale: int, closed_curves: bool) -> np.ndarray:
+    """Each state's steering angle (:attr:`SketchModel.steering`): the angle of the closed coarse curve at the
+    state's sample, as a sketch resampled by :func:`.steering.elaborate` has it, on the turn of the filtered
+    angle; or the filtered angle itself."""
+    if not closed_curves:
+        return np.ascontiguousarray(table["angles"][:, steering_scale])
+    blocks = []
+    for ring, angles in zip(coarse, angle_blocks):
+        theta = angles[:, steering_scale]
+        drawn = tangent_angles(resample_curve(ring, len(theta), closed=True), closed=True)
+        blocks.append(theta + _wrap(drawn - theta))
+    return np.ascontiguousarray(np.concatenate(blocks))
 
 
 def _state_table(angle_blocks, order: int, closed: bool, strides: np.ndarray) -> dict:

@@ -28,9 +28,13 @@ behaviour as an option:
 
 - ``coarse="sketch"``: each sample's direction is the sketch's plus the state's detail, so the conditioning
   error does not accumulate into drift (``"state"``: the state's own angle, the paper);
-- ``closure="distribute"`` (the default for a closed sketch): the gap between the curve's end and its start
-  is spread evenly along the curve, every segment moving by the same small vector, so no kink appears
-  (``"none"``: the gap stays, the paper);
+- ``closure="turn"`` (the default for a closed sketch): the curve is closed by the smallest change of its
+  tangent angles that closes it with every segment's length kept (:func:`.curves.close_angles`), a smooth
+  change with the direction, so no kink appears and the samples stay equally spaced (``"distribute"``: the
+  gap between the curve's end and its start is spread evenly along it, every segment moving by the same small
+  vector, which changes the segments' lengths by up to the gap per sample, so that a curve resampled at equal
+  arc length cuts its corners, turning by a third less at the coastlines' vertex counts; ``"none"``: the gap
+  stays, the paper);
 - ``untangle=True``: where the curve crosses itself, two crossing segments close a loop (the shorter
   stretch between them); the detail on it (the output's direction minus the sketch's) is halved and the
   curve rebuilt, until it is simple (after :data:`UNTANGLE_ROUNDS` halvings the detail on a loop is dropped;
@@ -57,12 +61,14 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .._checks import as_generator, integer_at_least, positive_number
+from .._checks import as_generator, instance_of, integer_array, integer_at_least, positive_number
 from ..geometry import as_points, read_svg
 from ._kernels import steer
 from .curves import (
     check_curve,
+    close_angles,
     close_curve,
+    coarse_ring,
     integrate_angles,
     match_size,
     multiscale_angles,
@@ -76,7 +82,7 @@ from .model import SketchModel
 __all__ = ["Elaboration", "coarsen", "copied_runs", "crossing_segments", "elaborate", "sketch_from_svg"]
 
 MODES = ("max", "sample")
-CLOSURES = (None, "distribute", "none")
+CLOSURES = (None, "turn", "distribute", "none")
 #: Halvings of the detail on a loop before it is dropped there (0.5 ** 8 < 0.4 %), and the samples beyond
 #: the two crossing segments that the loop's stretch includes.
 UNTANGLE_ROUNDS, UNTANGLE_REACH = 8, 4
@@ -181,9 +187,12 @@ def elaborate(
         Instantiate the most probable state (the paper's choice) or draw one.
     window : float, optional
         Search window Delta t as a fraction of the curve (in (0, 0.5]): for non-stationary classes.
-    closure : {None, "distribute", "none"}
-        ``"distribute"`` (what None means for a closed sketch) closes a closed elaboration by spreading its end
-        gap evenly along it; ``"none"`` leaves the gap (the paper). Open sketches take None only.
+    closure : {None, "turn", "distribute", "none"}
+        ``"turn"`` (what None means for a closed sketch) closes a closed elaboration by the smallest change of
+        its angles, segment lengths kept (:func:`.curves.close_angles`); ``"distribute"`` by spreading its end
+        gap evenly along it (:func:`.curves.close_curve`); ``"none"`` leaves the gap (the paper). Open sketches
+        take None only. A curve too far from closed for ``"turn"`` (segments nearly all parallel) is closed by
+        ``"distribute"``.
     match_extent : bool
         Scale the elaboration about its centroid to the sketch's radius of gyration and move it onto the
         sketch's centroid (our addition, on by default, :func:`.curves.match_size`). ``False`` integrates
@@ -228,7 +237,7 @@ def elaborate(
             raise ValueError(f"window must be at most 0.5 (half the curve), got {window}")
     if closure is not None and not closed:
         raise ValueError("closure applies to closed sketches only")
-    closure = closure or ("distribute" if closed else "none")
+    closure = closure or ("turn" if closed else "none")
 
     resampled = resample_curve(sketch, n_samples, closed=closed)
     phi = tangent_angles(resampled, closed=closed)
@@ -247,10 +256,11 @@ def elaborate(
 
     def build():
         """The curve of the angles with the current detail gain: integrated, closed, sized."""
-        path = integrate_angles(phi + gain * (angles - phi), step, start=resampled[0])
+        output = phi + gain * (angles - phi)
+        path = integrate_angles(output, step, start=resampled[0])
         gap = float(np.hypot(*(path[-1] - path[0])) / (step * angles.size)) if closed else 0.0
         if closed:
-            path = path[:-1] if closure == "none" else close_curve(path)
+            path = _closed_ring(path, output, step, closure)
         return (match_size(path, resampled) if match_extent else path), gap
 
     path, gap = build()
@@ -261,6 +271,18 @@ def elaborate(
     return Elaboration(points=path, angles=angles, sketch=resampled, steering=phi, states=states,
                        closed=closed, closing_gap=gap, restarts=int(restarts),
                        crossings=len(crossing), untangled=int(np.count_nonzero(gain < 1.0)))
+
+
+def _closed_ring(path: np.ndarray, angles: np.ndarray, step: float, closure: str) -> np.ndarray:
+    """The ring of a closed elaboration (``n`` points): its end gap kept, turned away or distributed."""
+    if closure == "none":
+        return path[:-1]
+    if closure == "turn":
+        try:
+            return integrate_angles(close_angles(angles), step, start=path[0])[:-1]
+        except ValueError:   # nearly parallel segments cannot be turned closed: shift them instead
+            pass
+    return close_curve(path)
 
 
 def _untangle(build, gain: np.ndarray, pairs: np.ndarray, closed: bool):
@@ -274,8 +296,8 @@ def _untangle(build, gain: np.ndarray, pairs: np.ndarray, closed: bool):
     path = None
     while pairs.size:
         loops = _loops(pairs, gain.size, closed)
-        if not gain[loops].any():
-            gain[:] = 0.0
+        if not gain[loops].any():   # the crossing comes from the detail elsewhere (it moves the whole curve)
+            loops = slice(None)
         gain[loops] *= 0.5
         gain[gain < 0.5**UNTANGLE_ROUNDS] = 0.0
         path, _ = build()
@@ -330,21 +352,32 @@ def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: 
     """The curve at the model's steering scale: the sketch a user would draw of it (eq. 1-2, phi = psi(theta)).
 
     The curve is resampled as training resamples its curves (:func:`.curves.resample_simple`, at ``n_samples``
-    points, default ``model.samples_per_curve``), its angles are filtered ``steering_scale`` times with the
-    model's filter and integrated back; a closed curve is closed by distributing its end gap
-    (:func:`.curves.close_curve`). The smooth curve is then brought to the detailed curve's size and place
-    (:func:`.curves.match_size`): with the same arc length it would span about ``model.extent_ratio`` times
-    more, which no user drawing the curve would do.
+    points, default ``model.samples_per_curve``, or the curve's own vertex count when the model was trained at
+    ``samples_per_curve="vertices"``), its angles are filtered ``steering_scale`` times with the
+    model's filter and integrated back; a closed curve is closed as :func:`.curves.coarse_ring` closes it.
+    The smooth curve is then brought to the detailed curve's size and place (:func:`.curves.match_size`):
+    with the same arc length it would span about ``model.extent_ratio`` times more, which no user drawing the
+    curve would do.
+
+    Raises
+    ------
+    TypeError
+        If ``model`` is not a :class:`~.model.SketchModel`.
+    ValueError
+        On a bad curve (too few points, NaN, repeated points, self-crossing) or ``n_samples``.
     """
+    instance_of(model, SketchModel, "model")
     closed = model.closed if closed is None else bool(closed)
     curve = check_curve(curve, closed=closed, name="curve")
-    n_samples = model.samples_per_curve if n_samples is None else n_samples
+    if n_samples is None:
+        n_samples = len(curve) if model.samples_per_curve == "vertices" else model.samples_per_curve
     points = resample_simple(curve, n_samples, closed=closed)   # as training reads its curves
     theta = tangent_angles(points, closed=closed)
     coarse = multiscale_angles(theta, model.steering_scale + 1, model.filter, closed=closed, causal=model.causal)[-1]
     lengths = np.hypot(*np.diff(np.vstack([points, points[:1]]) if closed else points, axis=0).T)
-    path = integrate_angles(coarse, float(lengths.mean()), start=points[0])
-    return match_size(close_curve(path) if closed else path, points)
+    step = float(lengths.mean())
+    path = coarse_ring(coarse, step, points[0]) if closed else integrate_angles(coarse, step, start=points[0])
+    return match_size(path, points)
 
 
 def copied_runs(model: SketchModel, states, *, slack: int = 0) -> np.ndarray:
@@ -355,13 +388,24 @@ def copied_runs(model: SketchModel, states, *, slack: int = 0) -> np.ndarray:
     Neighbouring samples of a curve are each other's most similar states, so the chain also moves along a
     training curve by repeating a sample or skipping one; ``slack=1`` counts those moves (an advance of 0, 1
     or 2 samples on the same curve) as copying too, a stricter test of novelty.
+
+    Raises
+    ------
+    TypeError
+        If ``model`` is not a :class:`~.model.SketchModel`.
+    ValueError
+        If ``states`` are not whole numbers indexing the model's states, or ``slack`` is negative.
     """
-    states = np.asarray(states)
+    instance_of(model, SketchModel, "model")
+    states = integer_array(states, "states").ravel()
+    if states.size and (states.min() < 0 or states.max() >= len(model)):
+        raise ValueError(f"states must be indices of the model's {len(model)} states, got values in "
+                         f"[{states.min()}, {states.max()}]")
     slack = integer_at_least(slack, "slack", 0)
     if slack == 0:
         follows = model.successor[states[:-1]] == states[1:]
     else:
-        n = model.samples_per_curve
+        n = model.curve_samples[model.curve[states[:-1]]]
         advance = model.sample[states[1:]] - model.sample[states[:-1]]
         if model.closed:
             advance %= n

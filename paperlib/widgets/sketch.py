@@ -19,8 +19,8 @@ from the release point back to the start.
 
 *elaboration* (section 3, eq. 3 and 5): :func:`paperlib.sketch.elaborate` with the variance ``sigma`` of
 eq. (5), the threshold ``top``, the instantiation ``mode`` (``max``: the paper's most probable state;
-``sample``: a state drawn with its probability, so seeds differ), the closure correction (``distribute``,
-our option for the closure problem the paper reports), the search window Delta t (a fraction of the curve,
+``sample``: a state drawn with its probability, so seeds differ), the closure correction (``turn`` or
+``distribute``, our options for the closure problem the paper reports; ``none``, the paper), the search window Delta t (a fraction of the curve,
 for non-stationary classes such as leaves; it compares arc-length positions, so a drawn leaf should start
 at its petiole, as the training leaves do), the number of samples and the seed.
 
@@ -127,6 +127,8 @@ ORDER_RANGE, SCALES_RANGE, TOP_RANGE, SAMPLES_RANGE = (1, 40), (1, 7), (1, 200),
 #: log10 bounds of the eq. (5) standard deviation sigma (radians): 0.003 to 3.2.
 SIGMA_DECADES = (-2.5, 0.5)
 WINDOW_RANGE = (0.01, 0.5)
+#: The closure corrections the explorer offers (:func:`paperlib.sketch.elaborate`'s ``closure``).
+CLOSURES = ("turn", "distribute", "none")
 #: Training curves of each class, then how many more are loaded and held out for the presets.
 N_COASTLINES, N_COASTLINES_LOADED = 40, 54
 N_LEAVES, LEAF_SEED = 14, 0
@@ -267,8 +269,11 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
     """
 
     def __init__(self, *, training: str, order: int, scales: int, sigma: float, top: int, mode: str,
-                 closure: str | None, window: float | None, seed: int, n_samples: int, preset: str,
+                 closure: str | None, window: float | None, seed: int, n_samples: int, preset: str | None,
                  figsize, dpi: int, canvas_size):
+        (training, order, scales, sigma, top, mode, closure, window, seed, n_samples, preset, figsize, dpi,
+         canvas_size) = _checked_settings(training, order, scales, sigma, top, mode, closure, window, seed, n_samples,
+                                          preset, figsize, dpi, canvas_size)
         self._figsize, self._dpi = tuple(figsize), int(dpi)
         self.model = self.sketch = self.elaboration = self.figure = self.error = None
         self.sketch_label = self.summary = self.message = ""
@@ -304,8 +309,9 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
                                continuous_update=False, style=wide)
         self.mode = w.ToggleButtons(options=[("max (paper)", "max"), ("sample", "sample")], value=mode,
                                     description="instantiate", style=wide)
-        self.closure = w.Checkbox(value=closure == "distribute", description="close: distribute the gap",
-                                  indent=False)
+        self.closure = w.ToggleButtons(options=[("turn", "turn"), ("distribute", "distribute"),
+                                                ("none (paper)", "none")], value=closure, description="close",
+                                       style=wide)
         self.use_window = w.Checkbox(value=window is not None, description="search window \u0394t", indent=False)
         self.window = w.FloatSlider(value=0.1 if window is None else window, min=WINDOW_RANGE[0],
                                     max=WINDOW_RANGE[1], step=0.01, description="\u0394t (fraction)",
@@ -449,7 +455,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
     def elaboration_options(self) -> dict:
         """The keyword arguments of :func:`paperlib.sketch.elaborate` the controls set (``rng`` included)."""
         return dict(n_samples=int(self.samples.value), sigma=float(self.sigma.value), top=int(self.top.value),
-                    mode=self.mode.value, closure="distribute" if self.closure.value else "none",
+                    mode=self.mode.value, closure=self.closure.value,
                     window=float(self.window.value) if self.use_window.value else None, rng=int(self.seed.value))
 
     def _run_elaboration(self) -> bool:
@@ -619,6 +625,34 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
 # ---------------------------------------------------------------------------- factory
 
 
+def _checked_settings(training, order, scales, sigma, top, mode, closure, window, seed, n_samples, preset, figsize,
+                      dpi, canvas_size) -> tuple:
+    """The explorer's settings checked against the ranges of :func:`sketch_explorer` (a ValueError naming the
+    parameter otherwise), ``preset=None`` replaced by the training class's default preset."""
+    if training not in CLASSES:
+        raise ValueError(f"unknown training class {training!r}; choose one of {', '.join(CLASSES)}")
+    order = _integer_in(order, "order", ORDER_RANGE)
+    scales = _integer_in(scales, "scales", SCALES_RANGE)
+    sigma = _number_in(sigma, "sigma", 10 ** SIGMA_DECADES[0], 10 ** SIGMA_DECADES[1])
+    top = _integer_in(top, "top", TOP_RANGE)
+    if mode not in ("max", "sample"):
+        raise ValueError(f"mode must be 'max' or 'sample', got {mode!r}")
+    if closure not in CLOSURES:
+        raise ValueError(f"closure must be one of {CLOSURES}, got {closure!r}")
+    if window is not None:
+        window = _number_in(window, "window", *WINDOW_RANGE)
+    seed = integer_at_least(seed, "seed", 0)
+    n_samples = _integer_in(n_samples, "n_samples", SAMPLES_RANGE)  # its least, 64, exceeds the largest order
+    preset = DEFAULT_PRESET[training] if preset is None else preset
+    if preset not in PRESETS:
+        raise ValueError(f"unknown preset {preset!r}; choose one of {', '.join(PRESETS)}")
+    dpi = integer_at_least(dpi, "dpi", 10)
+    figsize = _pair(figsize, "figsize", positive_number)
+    canvas_size = _pair(canvas_size, "canvas_size", lambda value, name: integer_at_least(value, name, 64))
+    return (training, order, scales, sigma, top, mode, closure, window, seed, n_samples, preset, figsize, dpi,
+            canvas_size)
+
+
 def _integer_in(value, name: str, bounds: tuple[int, int]) -> int:
     number = integer_at_least(value, name, bounds[0])
     if number > bounds[1]:
@@ -644,7 +678,7 @@ def _pair(values, name: str, check) -> tuple:
 
 
 def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: int = 5, sigma: float = 0.1,
-                    top: int = 20, mode: str = "max", closure: str = "distribute", window: float | None = None,
+                    top: int = 20, mode: str = "max", closure: str = "turn", window: float | None = None,
                     seed: int = 0, n_samples: int = 1000, preset: str | None = None, figsize=(10, 4.5), dpi: int = 80,
                     canvas_size=(420, 320)) -> SketchExplorer:
     """An interactive explorer of Simhon & Dudek 2001's elaboration of hand-drawn sketches.
@@ -667,9 +701,9 @@ def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: in
         States kept by the threshold, 1 to 200.
     mode : {"max", "sample"}
         Instantiate the most probable state (the paper) or draw one (seeds then differ).
-    closure : {"distribute", "none"}
-        Close the elaboration by distributing its end gap (our correction, the default) or leave the gap
-        (the paper).
+    closure : {"turn", "distribute", "none"}
+        Close the elaboration by turning its segments (our correction, the default), by distributing its end
+        gap, or leave the gap (the paper); :func:`paperlib.sketch.elaborate`.
     window : float, optional
         Search window Delta t as a fraction of the curve, 0.01 to 0.5 (None: no window).
     seed : int
@@ -700,26 +734,6 @@ def sketch_explorer(training: str = "coastlines", *, order: int = 20, scales: in
     Simhon & Dudek 2001, section 3 (eq. 3-5, the threshold, Delta t) and section 3.1 (the interface, the
     paper's settings), Figures 3, 4 and 6.
     """
-    if training not in CLASSES:
-        raise ValueError(f"unknown training class {training!r}; choose one of {', '.join(CLASSES)}")
-    order = _integer_in(order, "order", ORDER_RANGE)
-    scales = _integer_in(scales, "scales", SCALES_RANGE)
-    sigma = _number_in(sigma, "sigma", 10 ** SIGMA_DECADES[0], 10 ** SIGMA_DECADES[1])
-    top = _integer_in(top, "top", TOP_RANGE)
-    if mode not in ("max", "sample"):
-        raise ValueError(f"mode must be 'max' or 'sample', got {mode!r}")
-    if closure not in ("distribute", "none"):
-        raise ValueError(f"closure must be 'distribute' or 'none', got {closure!r}")
-    if window is not None:
-        window = _number_in(window, "window", *WINDOW_RANGE)
-    seed = integer_at_least(seed, "seed", 0)
-    n_samples = _integer_in(n_samples, "n_samples", SAMPLES_RANGE)  # its least, 64, exceeds the largest order
-    preset = DEFAULT_PRESET[training] if preset is None else preset
-    if preset not in PRESETS:
-        raise ValueError(f"unknown preset {preset!r}; choose one of {', '.join(PRESETS)}")
-    dpi = integer_at_least(dpi, "dpi", 10)
-    figsize = _pair(figsize, "figsize", positive_number)
-    canvas_size = _pair(canvas_size, "canvas_size", lambda value, name: integer_at_least(value, name, 64))
     explorer = SketchExplorer(training=training, order=order, scales=scales, sigma=sigma, top=top, mode=mode,
                               closure=closure, window=window, seed=seed, n_samples=n_samples, preset=preset,
                               figsize=figsize, dpi=dpi, canvas_size=canvas_size)
