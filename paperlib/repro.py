@@ -289,7 +289,7 @@ def load_stats(path) -> dict:
     try:
         text = path.read_text()
     except FileNotFoundError:
-        raise ValueError(f"{path}: no stats.json (did the notebook call paperlib.repro.start?)") from None
+        raise ValueError(f"path={str(path)!r}: no stats.json (did the notebook call paperlib.repro.start?)") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: cannot read stats.json ({exc})") from None
     data = load_json(text, f"{path}: a stats.json")
@@ -354,9 +354,9 @@ def read_toml(path, what: str = "expected statistics") -> dict:
     try:
         return tomllib.loads(path.read_text())
     except FileNotFoundError:
-        raise ValueError(f"{what} file not found: {path}") from None
+        raise ValueError(f"{what} file not found: path={str(path)!r}") from None
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: invalid TOML ({exc})") from None
+        raise ValueError(f"path={str(path)!r}: invalid TOML ({exc})") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: cannot read the {what} file ({exc})") from None
 

@@ -196,7 +196,7 @@ def test_train_rejects_bad_input():
         train([curve], scales=3, steering_scale=3)
     with pytest.raises(ValueError, match="weights must have shape"):
         train([curve], scales=2, order=3, weights=np.ones((3, 2)))
-    with pytest.raises(ValueError, match="training curve 1 crosses itself"):
+    with pytest.raises(ValueError, match=r"curves\[1\] crosses itself"):
         train([curve, [[0, 0], [1, 1], [1, 0], [0, 1]]])
     with pytest.raises(ValueError, match="similarity_sigma"):
         train([curve], similarity_sigma=0.0)

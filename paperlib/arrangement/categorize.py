@@ -500,7 +500,7 @@ def categorize(
     """
     elements = as_elements(elements)
     if not elements:
-        raise ValueError("categorize needs at least one element, got none")
+        raise ValueError("elements must hold at least one element (categorize needs one), got none")
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     n_bins = _checked_bins(bins)
@@ -1049,11 +1049,11 @@ def adjusted_rand_index(labels_a, labels_b) -> float:
     a = np.asarray(labels_a)
     b = np.asarray(labels_b)
     if a.ndim != 1 or b.ndim != 1:
-        raise ValueError(f"labels must be 1-D, got shapes {a.shape} and {b.shape}")
+        raise ValueError(f"labels_a and labels_b must be 1-D, got shapes {a.shape} and {b.shape}")
     if a.size != b.size:
-        raise ValueError(f"labels must have the same length, got {a.size} and {b.size}")
+        raise ValueError(f"labels_a and labels_b must have the same length, got {a.size} and {b.size}")
     if a.size == 0:
-        raise ValueError("labels are empty")
+        raise ValueError("labels_a and labels_b must not be empty, got 0 labels")
     _, a_index = np.unique(a, return_inverse=True)
     _, b_index = np.unique(b, return_inverse=True)
     a_index, b_index = a_index.ravel(), b_index.ravel()

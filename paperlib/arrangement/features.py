@@ -354,7 +354,7 @@ def crossing_points(
 
 def _stack_one(element) -> StackedStrokes:
     if not isinstance(element, Element):
-        raise TypeError(f"expected an Element, got {type(element).__name__}")
+        raise TypeError(f"element must be an Element, got {type(element).__name__}")
     return stack_strokes([element])
 
 

@@ -98,7 +98,7 @@ def element_positions(elements) -> np.ndarray:
     """
     elements = as_elements(elements)
     if not elements:
-        raise ValueError("element_positions needs at least one element")
+        raise ValueError("elements must hold at least one element (element_positions needs one), got none")
     return np.array(oriented_bounding_boxes(elements).centers, dtype=np.float64).reshape(-1, 2)
 
 

@@ -86,6 +86,9 @@ def country_english_names() -> dict[str, str]:
 
 
 def _check_code(code) -> str:
+    if not isinstance(code, str):
+        raise ValueError(f"unknown country code {code!r:.60}: code must be a str (an ISO 3166-1 alpha-2 country code), "
+                         f"got {type(code).__name__}")
     countries = _parsed_map()[0]
     key = code.strip().lower() if isinstance(code, str) else code
     if key in countries:

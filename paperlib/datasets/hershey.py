@@ -57,7 +57,7 @@ def hershey_fonts() -> list[str]:
 
 
 def _check_font(font: str) -> None:
-    if font not in _font_names():
+    if not isinstance(font, str) or font not in _font_names():
         raise ValueError(
             f"unknown Hershey font {font!r}; available fonts: {', '.join(_font_names())}"
         )
@@ -86,9 +86,9 @@ def _font_strokes(font: str) -> MappingProxyType:
     return MappingProxyType(table)
 
 
-def _check_char(char) -> None:
+def _check_char(char, name: str = "char") -> None:
     if not isinstance(char, str) or len(char) != 1:
-        raise ValueError(f"expected a single character, got {char!r}")
+        raise ValueError(f"{name} must be a single character, got {char!r}")
 
 
 def hershey_glyph(
@@ -175,9 +175,9 @@ def hershey_glyphs(
     try:
         chars = list(text_or_chars)
     except TypeError:
-        raise ValueError(f"expected a string or an iterable of characters, got {text_or_chars!r}") from None
-    for char in chars:
-        _check_char(char)
+        raise ValueError(f"text_or_chars must be a string or an iterable of characters, got {text_or_chars!r}") from None
+    for index, char in enumerate(chars):
+        _check_char(char, f"text_or_chars[{index}]")
     table = _font_strokes(font)
     if skip_blank:
         chars = [c for c in chars if c not in table or table[c]]

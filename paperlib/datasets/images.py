@@ -99,7 +99,7 @@ def grayscale_names() -> list[str]:
 
 def _check_name(name, valid: list[str], kind: str) -> None:
     if not isinstance(name, str) or name not in valid:
-        raise ValueError(f"unknown {kind} {name!r}; valid names: {', '.join(valid)}")
+        raise ValueError(f"unknown {kind} {name!r}: name must be one of {', '.join(valid)}")
 
 
 @lru_cache(maxsize=None)

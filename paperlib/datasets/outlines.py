@@ -154,7 +154,7 @@ def glyph_outline(name: str, n_points: int | None = None, *, max_points: int = M
         If ``name`` is unknown or ``n_points`` is invalid.
     """
     if not isinstance(name, str) or name not in OUTLINE_CODEPOINTS:
-        raise ValueError(f"unknown outline {name!r}; valid names: {', '.join(outline_names())}")
+        raise ValueError(f"unknown outline {name!r}: name must be one of {', '.join(outline_names())}")
     outline = _outer_outline(name)
     if n_points is None:
         return outline

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import finite_array
+from .._checks import check_flag, finite_array
 from .strokes import Element, StackedStrokes, as_points, stack_strokes
 
 __all__ = ["OrientedBox", "OrientedBoxes", "oriented_bounding_box", "oriented_bounding_boxes"]
@@ -360,13 +360,14 @@ def oriented_bounding_box(points_or_element, *, weights=None, include_width: boo
        center c of the bounding box."
     .. [2] Hurtut et al. 2009, section 2.1.
     """
+    include_width = check_flag(include_width, "include_width")
     if isinstance(points_or_element, Element):
         if weights is not None:
             raise ValueError("weights apply to point sets; an element is weighted by arc length")
         return oriented_bounding_boxes([points_or_element], include_width=include_width)[0]
     if include_width:
         raise ValueError("include_width applies to elements; a point set has no pen width")
-    points = as_points(points_or_element)
+    points = as_points(points_or_element, name="points_or_element")
     weights = _point_weights(weights, points.shape[0])
     group = np.zeros(points.shape[0], dtype=int)
     moments = _weighted_moments(points, weights, group, 1)

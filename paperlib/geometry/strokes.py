@@ -120,12 +120,14 @@ class Element:
     name: str = ""
 
     def __post_init__(self):
+        if isinstance(self.strokes, (str, bytes)) or not hasattr(self.strokes, "__iter__"):
+            raise TypeError(f"strokes must be a sequence of Stroke, got {type(self.strokes).__name__}")
         strokes = tuple(self.strokes)
         if not strokes:
-            raise ValueError("an element needs at least one stroke")
+            raise ValueError("strokes must hold at least one stroke (an element needs one), got an empty sequence")
         for i, stroke in enumerate(strokes):
             if not isinstance(stroke, Stroke):
-                raise TypeError(f"element stroke {i} is a {type(stroke).__name__}, expected Stroke")
+                raise TypeError(f"strokes[{i}] (element stroke {i}) is a {type(stroke).__name__}, expected Stroke")
         object.__setattr__(self, "strokes", strokes)
 
     def __len__(self) -> int:

@@ -253,7 +253,7 @@ def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES) -> str | byt
     XML parser honours their encoding declaration), gzip (.svgz) decompressed; at most
     ``max_bytes`` either way."""
     if isinstance(path_or_text, str) and not path_or_text.strip():
-        raise ValueError("read_svg got an empty string: expected SVG text or a file name")
+        raise ValueError("path_or_text must be SVG text or a file name, got an empty string")
     if isinstance(path_or_text, str) and path_or_text.lstrip("\ufeff \t\r\n").startswith("<"):
         return path_or_text.lstrip("\ufeff")
     if isinstance(path_or_text, (bytes, bytearray)):
@@ -269,7 +269,7 @@ def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES) -> str | byt
         check_budget(path.stat().st_size, max_bytes, "max_bytes", "bytes of SVG file")
         data = path.read_bytes()
     else:
-        raise TypeError(f"expected an SVG file name or SVG text, got {type(path_or_text).__name__}")
+        raise TypeError(f"path_or_text must be an SVG file name or SVG text, got {type(path_or_text).__name__}")
     check_budget(len(data), max_bytes, "max_bytes", "bytes of SVG")
     if data[:2] == b"\x1f\x8b":
         data = _gunzip(data, max_bytes)

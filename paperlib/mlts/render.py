@@ -71,7 +71,7 @@ def load_palette(source) -> np.ndarray:
     """
     if isinstance(source, str):
         if source not in photograph_names():
-            raise ValueError(f"palette {source[:100]!r} is not a bundled photograph; choose among "
+            raise ValueError(f"palette source {source[:100]!r} is not a bundled photograph; choose among "
                              f"{', '.join(photograph_names())}, or pass a local image as a pathlib.Path")
         pixels = photograph(source)
     elif isinstance(source, os.PathLike):
@@ -80,7 +80,8 @@ def load_palette(source) -> np.ndarray:
         try:
             pixels = np.asarray(source)
         except (TypeError, ValueError):
-            raise ValueError("palette must be a photograph name, a local image path or an array of colours") from None
+            raise ValueError("source (the palette) must be a photograph name, a local image path or an array of "
+                             "colours") from None
     return _palette_colours(pixels, source)
 
 
@@ -100,17 +101,18 @@ def _read_local_image(path: Path) -> np.ndarray:
         raise ValueError(f"cannot read palette image {str(path)!r}: {exc}") from None
 
 
-def _palette_colours(pixels: np.ndarray, source) -> np.ndarray:
+def _palette_colours(pixels: np.ndarray, source, name: str = "source") -> np.ndarray:
     if pixels.dtype.kind not in "biuf":
-        raise ValueError(f"palette colours must be numbers, got dtype {pixels.dtype}")
+        raise ValueError(f"{name} (the palette) colours must be numbers, got dtype {pixels.dtype}")
     if pixels.ndim not in (2, 3) or pixels.shape[-1] not in (3, 4) or pixels.size == 0:
-        raise ValueError(f"palette {source!r} must be an RGB(A) image or an (n, 3) colour list, got {pixels.shape}")
+        raise ValueError(f"{name} (the palette) must be an RGB(A) image or an (n, 3) colour list, "
+                         f"got shape {pixels.shape}: {source!r:.100}")
     colours = pixels.reshape(-1, pixels.shape[-1])[:, :3]
     if np.issubdtype(colours.dtype, np.integer):
         colours = colours / 255.0
     colours = np.asarray(colours, dtype=np.float64)
     if not np.all(np.isfinite(colours)) or colours.min() < 0 or colours.max() > 1:
-        raise ValueError(f"palette {source!r} colours must lie in [0, 1] (or be 8-bit)")
+        raise ValueError(f"{name} (the palette) colours must lie in [0, 1] (or be 8-bit), got {source!r:.100}")
     if len(colours) > PALETTE_PIXELS:
         colours = colours[np.random.default_rng(0).choice(len(colours), PALETTE_PIXELS, replace=False)]
     return colours
@@ -196,7 +198,7 @@ def _tessellation(structure: Structure, palette: np.ndarray, samples: int, rng) 
 
 def _render_palette(settings: RenderSettings, palette) -> np.ndarray:
     """The colours a render uses: ``palette`` when given, else the script's photograph."""
-    return load_palette(settings.palette) if palette is None else _palette_colours(np.asarray(palette), "palette")
+    return load_palette(settings.palette) if palette is None else _palette_colours(np.asarray(palette), palette, "palette")
 
 
 def _object_paint(structure: Structure, settings: RenderSettings, colours: np.ndarray, rng):

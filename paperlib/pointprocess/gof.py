@@ -209,6 +209,8 @@ mad_test.__doc__ = """Maximum absolute deviation test of a point process model (
 def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, rinterval, alternative, clamp,
                  leaveout, use_theory, ties, fun_kwargs, simulate_kwargs, rng, client, workers,
                  progress) -> GlobalTest:
+    if not callable(fun):
+        raise TypeError(f"fun must be a summary function such as Lest, got {type(fun).__name__} {fun!r:.40}")
     _check_options(alternative, clamp, leaveout, use_theory, ties)
     observed_values, column, simulated = _simulated_curves(
         observed, fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,

@@ -620,7 +620,7 @@ def _evenly_spaced(r: np.ndarray) -> bool:
 
 def _checked_pattern(pattern) -> PointPattern:
     if not isinstance(pattern, PointPattern):
-        raise TypeError(f"expected a paperlib.pointprocess.PointPattern, got {type(pattern).__name__}")
+        raise TypeError(f"pattern must be a paperlib.pointprocess.PointPattern, got {type(pattern).__name__}")
     return pattern
 
 

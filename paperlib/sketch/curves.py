@@ -109,6 +109,7 @@ def check_curve(points, *, closed: bool, min_points: int = 3, name: str = "curve
 
 def resample_curve(points, n_points: int, *, closed: bool) -> np.ndarray:
     """``n_points`` samples equally spaced in arc length along a closed ring or an open polyline."""
+    closed = check_flag(closed, "closed")
     return resample_closed_curve(points, n_points) if closed else resample_open_curve(points, n_points)
 
 

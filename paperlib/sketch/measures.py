@@ -18,9 +18,12 @@ of the sketch takes one training sample's detail).
 
 from __future__ import annotations
 
+from numbers import Real
+
 import numpy as np
 from scipy.stats import ks_2samp
 
+from .._checks import check_flag
 from ..geometry import as_points, hausdorff
 from .curves import tangent_angles, total_turning
 
@@ -40,8 +43,9 @@ def _polyline(points, closed: bool, name: str) -> np.ndarray:
 
 def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
     """The polyline's vertices plus points every ``spacing`` (at most) along each of its segments."""
-    if not spacing > 0:
-        raise ValueError(f"spacing must be positive, got {spacing}")
+    closed = check_flag(closed, "closed")
+    if not isinstance(spacing, Real) or not spacing > 0:
+        raise ValueError(f"spacing must be positive, got {spacing!r:.60}")
     polyline = _polyline(points, closed, "points")
     starts, moves = polyline[:-1], np.diff(polyline, axis=0)
     pieces = np.maximum(np.ceil(np.hypot(*moves.T) / spacing).astype(np.int64), 1)
@@ -79,9 +83,13 @@ def turning_per_sample(points, *, closed: bool) -> np.ndarray:
 
 def turning_ks(a, b) -> float:
     """Two-sample Kolmogorov-Smirnov distance between two sets of turnings (0: same distribution, 1: disjoint)."""
-    a, b = (np.asarray(x, dtype=np.float64).ravel() for x in (a, b))
+    try:
+        a, b = (np.asarray(x, dtype=np.float64).ravel() for x in (a, b))
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"a and b must be arrays of turnings (numbers), got {type(a).__name__} and "
+                         f"{type(b).__name__}") from None
     if a.size == 0 or b.size == 0 or not (np.isfinite(a).all() and np.isfinite(b).all()):
-        raise ValueError("turning_ks needs two non-empty sets of finite turnings")
+        raise ValueError(f"a and b must be non-empty sets of finite turnings, got sizes {a.size} and {b.size}")
     return float(ks_2samp(a, b).statistic)
 
 

@@ -234,7 +234,7 @@ def _curve_list(curves) -> list:
     except TypeError:
         raise TypeError(f"curves must be a sequence of (n, 2) point arrays, got {type(curves).__name__}") from None
     if not curves:
-        raise ValueError("the training set is empty: give at least one curve")
+        raise ValueError("curves must hold at least one curve, got an empty training set")
     return curves
 
 
@@ -339,7 +339,7 @@ def train(
             raise TypeError(f"{name} must be True or False, got {flag!r}")
     if transitions not in TRANSITIONS:
         raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
-    curves = [check_curve(curve, closed=closed, name=f"training curve {k}") for k, curve in enumerate(_curve_list(curves))]
+    curves = [check_curve(curve, closed=closed, name=f"curves[{k}]") for k, curve in enumerate(_curve_list(curves))]
     counts = _sample_counts(samples_per_curve, curves, order, scales)
     weights = _check_weights(weights, scales, order)
     taps = filter_weights(filter_width, kernel)
@@ -348,7 +348,7 @@ def train(
 
     angle_blocks, resampled = [], []
     for k, (curve, samples) in enumerate(zip(curves, counts)):
-        angles, points = _curve_angles(curve, int(samples), scales, taps, closed, causal, f"training curve {k}")
+        angles, points = _curve_angles(curve, int(samples), scales, taps, closed, causal, f"curves[{k}]")
         angle_blocks.append(angles)
         resampled.append(points)
     strides = 2 ** np.arange(scales) if subsample else np.ones(scales, dtype=np.int64)

@@ -56,6 +56,7 @@ References
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -420,6 +421,8 @@ def sketch_from_svg(source, *, tolerance: float = 0.5) -> tuple[np.ndarray, bool
     A stroke whose last point repeats its first (a closed path, a polygon, a circle) is closed; the
     repeated point is dropped. Coordinates are y-up (:func:`paperlib.geometry.read_svg`).
     """
+    if not isinstance(source, (str, bytes, bytearray, os.PathLike)):
+        raise TypeError(f"source must be an SVG file name or SVG text, got {type(source).__name__}")
     strokes = [stroke for element in read_svg(source, tolerance=tolerance) for stroke in element.strokes]
     stroke = max(strokes, key=lambda s: float(np.hypot(*np.diff(s.points, axis=0).T).sum()) if len(s.points) > 1
                  else 0.0)

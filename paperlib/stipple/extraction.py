@@ -55,7 +55,7 @@ from skimage.measure import label, regionprops
 
 from paperlib._checks import positive_number
 
-from .glcm import check_bitonal
+from .glcm import _checked_bitonal
 from .voronoi_stippling import weighted_centroids
 
 __all__ = ["LEVELS", "DistributionResult", "Mark", "classify_level", "extract_distribution", "extract_marks"]
@@ -138,7 +138,7 @@ def _fraction(value, name: str) -> float:
 
 def _checked_texture(texture) -> np.ndarray:
     """Bitonal texture that holds both ink and paper (pure white or black tones have no stipples)."""
-    ink = check_bitonal(texture)
+    ink = _checked_bitonal(texture, "texture")
     if not ink.any():
         raise ValueError("texture is all white (no ink): a pure white tone has no stipples to extract")
     if ink.all():

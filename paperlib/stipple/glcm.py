@@ -155,15 +155,20 @@ def check_bitonal(image) -> np.ndarray:
     ----------
     Kim et al. 2009, section 3.3.2 ("the input textures are bitonal images").
     """
-    array = _as_2d_array(image, "texture")
+    return _checked_bitonal(image, "image")
+
+
+def _checked_bitonal(image, name: str) -> np.ndarray:
+    """:func:`check_bitonal` with the messages naming the caller's parameter ``name``."""
+    array = _as_2d_array(image, name)
     hint = "threshold it first with paperlib.stipple.glcm.to_bitonal(image, threshold)"
     if array.dtype == np.bool_:
         return np.ascontiguousarray(array)
     if array.dtype.kind not in "iu":
-        raise ValueError(f"texture must be boolean or integer 0/1, got dtype {array.dtype}; {hint}")
+        raise ValueError(f"{name} must be boolean or integer 0/1, got dtype {array.dtype}; {hint}")
     if not np.all((array == 0) | (array == 1)):
         found = np.unique(array)[:6].tolist()
-        raise ValueError(f"texture is not bitonal: values {found}... besides 0 and 1; {hint}")
+        raise ValueError(f"{name} is not bitonal: values {found}... besides 0 and 1; {hint}")
     return np.ascontiguousarray(array != 0)
 
 
@@ -276,7 +281,10 @@ def pair_totals(shape, offsets) -> np.ndarray:
     ----------
     Kim et al. 2009, eq. (1) and the normalised GLCM N of eqs. (2)-(4).
     """
-    height, width = (int(side) for side in shape)
+    try:
+        height, width = (int(side) for side in shape)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"shape must be a (height, width) pair of integers, got {shape!r:.60}") from None
     checked = _check_offsets(offsets, (height, width))
     return (height - np.abs(checked[:, 0])) * (width - np.abs(checked[:, 1]))
 
@@ -309,7 +317,7 @@ def cooccurrence_counts(texture, offsets) -> np.ndarray:
     ----------
     Kim et al. 2009, section 3.3.1, eq. (1); section 3.3.2 for the 2x2 bitonal case.
     """
-    ink = check_bitonal(texture)
+    ink = _checked_bitonal(texture, "texture")
     checked = _check_offsets(offsets, ink.shape)
     counts = np.empty((len(checked), 2, 2), dtype=np.int64)
     for m, (dy, dx) in enumerate(checked):

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..parallel import progress_enabled, run_many, spawn_seeds
 from .extraction import DistributionResult, Mark, classify_level, extract_distribution, extract_marks
-from .glcm import check_bitonal
+from .glcm import _checked_bitonal
 from .rendering import StippleRendering, level_grays, render_stippling, tone_gray_levels
 from .synthesis import SynthesisResult, synthesize_distribution
 from .tone_map import ToneMap
@@ -88,10 +88,15 @@ class StippleLibrary:
 
 
 def _example_textures(tone_textures) -> list[np.ndarray]:
+    if not isinstance(tone_textures, ToneMap) and (
+            isinstance(tone_textures, (str, bytes)) or not hasattr(tone_textures, "__iter__")):
+        raise TypeError(f"tone_textures must be a ToneMap or a sequence of bitonal 2-D arrays, "
+                        f"got {type(tone_textures).__name__}")
     textures = tone_textures.textures if isinstance(tone_textures, ToneMap) else list(tone_textures)
     if len(textures) < 2:
-        raise ValueError(f"a stipple library needs at least two tone textures, got {len(textures)}")
-    return [check_bitonal(texture) for texture in textures]
+        raise ValueError(f"tone_textures must hold at least two tone textures (a stipple library needs them), "
+                         f"got {len(textures)}")
+    return [_checked_bitonal(texture, f"tone_textures[{index}]") for index, texture in enumerate(textures)]
 
 
 def _tile_size(size, examples) -> int:

@@ -73,7 +73,7 @@ from paperlib._checks import as_generator
 from skimage.morphology import remove_small_holes, remove_small_objects
 
 from .extraction import Mark
-from .glcm import check_bitonal
+from .glcm import _checked_bitonal
 
 __all__ = [
     "PURE_BLACK",
@@ -162,9 +162,13 @@ class StippleRendering:
 
 def _checked_tiles(distribution_textures) -> list[np.ndarray]:
     """The distribution tiles as bool arrays: at least two, square, all of one shape."""
-    tiles = [check_bitonal(texture) for texture in distribution_textures]
+    if isinstance(distribution_textures, (str, bytes)) or not hasattr(distribution_textures, "__iter__"):
+        raise TypeError("distribution_textures must be a sequence of bitonal 2-D arrays, "
+                        f"got {type(distribution_textures).__name__}")
+    tiles = [_checked_bitonal(texture, f"distribution_textures[{index}]")
+             for index, texture in enumerate(distribution_textures)]
     if len(tiles) < 2:
-        raise ValueError(f"need at least two tone levels, got {len(tiles)} distribution textures")
+        raise ValueError(f"distribution_textures must hold at least two tone levels, got {len(tiles)} textures")
     shape = tiles[0].shape
     if shape[0] != shape[1] or any(tile.shape != shape for tile in tiles):
         raise ValueError(
@@ -216,13 +220,16 @@ def _checked_image(image) -> np.ndarray:
 
 def _checked_grays(tone_grays) -> np.ndarray:
     """Tone grays as a 1-D float array of at least two distinct values in [0, 1]."""
-    grays = np.asarray(tone_grays, dtype=float)
+    try:
+        grays = np.asarray(tone_grays, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"tone_grays must be a 1-D array of numbers in [0, 1], got {type(tone_grays).__name__}") from None
     if grays.ndim != 1 or grays.size < 2:
-        raise ValueError(f"need the grays of at least two tone levels, got shape {grays.shape}")
+        raise ValueError(f"tone_grays must hold the grays of at least two tone levels (1-D), got shape {grays.shape}")
     if not np.all(np.isfinite(grays)) or grays.min() < 0 or grays.max() > 1:
-        raise ValueError("tone grays must be finite and within [0, 1]")
+        raise ValueError("tone_grays must be finite and within [0, 1]")
     if np.unique(grays).size != grays.size:
-        raise ValueError(f"tone grays must be distinct (the selection interpolates between them), got {grays}")
+        raise ValueError(f"tone_grays must be distinct (the selection interpolates between them), got {grays}")
     return grays
 
 
@@ -347,7 +354,7 @@ def render_tone(distribution, marks, rng=None) -> np.ndarray:
     ----------
     Kim et al. 2009, section 4.2 ("a random mark is uniformly selected and placed").
     """
-    centres = check_bitonal(distribution)
+    centres = _checked_bitonal(distribution, "distribution")
     library, white = _checked_library(marks, 0)
     rng = as_generator(rng)
     canvas = np.full(centres.shape, white)
@@ -598,11 +605,11 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None, *, pure_leve
     Kim et al. 2009, section 4.2 (black marks, then white marks; the level map; uniform choice
     of a mark); section 3.2 (tones 0 and 9 pure white and black).
     """
-    centres = check_bitonal(distribution)
+    centres = _checked_bitonal(distribution, "distribution")
     given = list(marks_per_tone)
     libraries, white = _checked_libraries(given, len(given))
     if len(libraries) < 2:
-        raise ValueError(f"need at least two tone levels, got {len(libraries)} mark libraries")
+        raise ValueError(f"marks_per_tone must hold at least two tone levels, got {len(libraries)} mark libraries")
     pure_levels = _checked_pure_levels(pure_levels)
     index = _checked_tone_index(tone_index, len(libraries), pure_levels)
     if index.shape != centres.shape:
@@ -653,7 +660,7 @@ def remove_small_chunks(image, min_size: int, *, connectivity: int = 2) -> Chunk
     Kim et al. 2009, section 4.2 and Figure 11 ("identifying the small pixel chunks, both white
     on a black background and black on a white background").
     """
-    ink = check_bitonal(image)
+    ink = _checked_bitonal(image, "image")
     if isinstance(min_size, bool) or not isinstance(min_size, (int, np.integer)) or min_size < 1:
         raise ValueError(f"min_size must be an integer >= 1, got {min_size!r}")
     if connectivity not in (1, 2):

@@ -31,7 +31,7 @@ from scipy.spatial import cKDTree
 from scipy.stats import ks_2samp
 
 from ..pointprocess import PointPattern, Window, pcf
-from .glcm import check_bitonal
+from .glcm import _checked_bitonal
 
 __all__ = [
     "SpacingComparison",
@@ -50,7 +50,7 @@ PCF_STEPS = 101
 
 def _stipple_pixels(texture, name: str) -> tuple[np.ndarray, tuple[int, int]]:
     """(row, col) of the ink pixels of a bitonal texture holding at least two of them."""
-    ink = check_bitonal(texture)
+    ink = _checked_bitonal(texture, "texture")
     pixels = np.argwhere(ink)
     if len(pixels) < 2:
         raise ValueError(f"{name} has {len(pixels)} stipple pixel(s): need at least 2 to measure spacing")
@@ -158,7 +158,7 @@ def compare_spacing(reference, texture) -> SpacingComparison:
     ValueError
         Non-bitonal textures, fewer than two stipples in either, or different shapes.
     """
-    first, second = check_bitonal(reference), check_bitonal(texture)
+    first, second = _checked_bitonal(reference, "reference"), _checked_bitonal(texture, "texture")
     if first.shape != second.shape:
         raise ValueError(
             f"reference {first.shape} and texture {second.shape} differ in shape: spacing measures are not "
@@ -192,7 +192,7 @@ def block_dispersion(texture, block: int = 32) -> float:
     ValueError
         Non-bitonal texture, a block side < 1, fewer than two whole blocks, or no ink.
     """
-    ink = check_bitonal(texture)
+    ink = _checked_bitonal(texture, "texture")
     if isinstance(block, bool) or not isinstance(block, (int, np.integer)) or block < 1:
         raise ValueError(f"block must be a positive integer (pixels), got {block!r}")
     rows, cols = ink.shape[0] // block, ink.shape[1] // block

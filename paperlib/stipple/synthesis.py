@@ -59,7 +59,7 @@ from .glcm import (
     ace,
     ace_change_by_group_kernel,
     ace_change_kernel,
-    check_bitonal,
+    _checked_bitonal,
     cooccurrence_counts,
     flip_update_kernel,
     normalized_glcms,
@@ -154,8 +154,8 @@ def stipple_geometry(example, marks: str = "auto") -> StippleGeometry:
     Kim et al. 2009, section 3.2 (connected components with an 8-neighbourhood, centres,
     S_avg, O_min, O_max, O_avg), used by section 3.4.2.
     """
-    ink = check_bitonal(example)
-    if marks not in ("auto", "black", "white"):
+    ink = _checked_bitonal(example, "example")
+    if not isinstance(marks, str) or marks not in ("auto", "black", "white"):
         raise ValueError(f"marks must be 'auto', 'black' or 'white', got {marks!r}")
     white_marks = marks == "white" or (marks == "auto" and ink.mean() > 0.5)
     stipples = label(~ink if white_marks else ink, connectivity=2)
@@ -580,13 +580,13 @@ def synthesize_distribution(
     flips, acceptance), 3.4.2 (radius D, considered pixels, O_min fallback), 3.3.2 (offsets,
     white seed).
     """
-    target_texture = check_bitonal(example)
+    target_texture = _checked_bitonal(example, "example")
     if min(target_texture.shape) < 2:
         raise ValueError(f"example of shape {target_texture.shape} is too small: need at least 2 x 2 pixels")
     if seed_texture is None:
         texture = np.zeros(_output_shape(size, target_texture.shape), dtype=np.bool_)
     else:
-        texture = check_bitonal(seed_texture).copy()
+        texture = _checked_bitonal(seed_texture, "seed_texture").copy()
         if size is not None and _output_shape(size, target_texture.shape) != texture.shape:
             raise ValueError(f"seed_texture has shape {texture.shape} but size asks for {size!r}")
         if min(texture.shape) < 2:

@@ -250,7 +250,10 @@ def weighted_centroids(points, density) -> tuple[np.ndarray, np.ndarray]:
     ----------
     Secord (2002): the centroid of a Voronoi region under a density function.
     """
-    weights = np.asarray(density, dtype=float)
+    try:
+        weights = np.asarray(density, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"density must be a non-empty 2-D array of numbers, got {type(density).__name__}") from None
     if weights.ndim != 2 or weights.size == 0:
         raise ValueError(f"density must be a non-empty 2-D array, got shape {weights.shape}")
     if not np.all(np.isfinite(weights)) or weights.min() < 0:

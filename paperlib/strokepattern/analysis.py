@@ -73,7 +73,10 @@ def as_strokes(strokes, *, min_count: int = 2) -> tuple:
     (e.g. from :func:`paperlib.geometry.read_svg`), whose strokes are taken in order.
     """
     if isinstance(strokes, (Stroke, Element)):
-        raise ValueError("a pattern is a sequence of strokes (or elements), got a single one: wrap it in a list")
+        raise ValueError(f"strokes must be a sequence of strokes (or elements), got a single {type(strokes).__name__}: "
+                         "wrap it in a list")
+    if isinstance(strokes, (str, bytes)) or not hasattr(strokes, "__iter__"):
+        raise ValueError(f"strokes must be a sequence of Strokes (or Elements), got {type(strokes).__name__}")
     flat = []
     for index, item in enumerate(strokes):
         if isinstance(item, Element):
@@ -81,9 +84,10 @@ def as_strokes(strokes, *, min_count: int = 2) -> tuple:
         elif isinstance(item, Stroke):
             flat.append(item)
         else:
-            raise ValueError(f"pattern item {index} is a {type(item).__name__}, expected a Stroke or an Element")
+            raise ValueError(f"strokes[{index}] (pattern item {index}) is a {type(item).__name__}, "
+                             "expected a Stroke or an Element")
     if len(flat) < min_count:
-        raise ValueError(f"a stroke pattern needs at least {min_count} strokes, got {len(flat)}")
+        raise ValueError(f"strokes must hold at least {min_count} strokes (a stroke pattern needs them), got {len(flat)}")
     return tuple(flat)
 
 
@@ -127,7 +131,19 @@ def fit_elements(groups, *, contour: bool = False) -> OrientedBoxes:
     ----------
     Barla et al. 2006, section 2.1.
     """
-    elements = [group if isinstance(group, Element) else Element(tuple(group)) for group in groups]
+    if isinstance(groups, (str, bytes, Element)) or not hasattr(groups, "__iter__"):
+        raise TypeError(f"groups must be a sequence of Elements or of stroke groups, got {type(groups).__name__}")
+    groups = list(groups)
+    if not groups:
+        raise ValueError("groups must hold at least 1 element (an Element or a group of strokes), got 0")
+    elements = []
+    for index, group in enumerate(groups):
+        if not isinstance(group, Element) and (isinstance(group, (str, bytes)) or not hasattr(group, "__iter__")):
+            raise TypeError(f"groups[{index}] must be an Element or a sequence of Stroke, got {type(group).__name__}")
+        try:
+            elements.append(group if isinstance(group, Element) else Element(tuple(group)))
+        except (TypeError, ValueError) as error:
+            raise type(error)(f"groups[{index}]: {error}") from None
     return oriented_bounding_boxes(elements, include_width=contour)
 
 

@@ -74,6 +74,13 @@ def rule_score(means, sigmas) -> np.ndarray:
 
     ``means`` has the measures on its last axis, in :data:`MEASURES` order.
     """
+    for value, name in ((means, "means"), (sigmas, "sigmas")):
+        if isinstance(value, (str, bytes)):
+            raise ValueError(f"{name} must be an array of numbers, got {type(value).__name__}")
+        try:
+            np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError, OverflowError):
+            raise ValueError(f"{name} must be an array of numbers, got {type(value).__name__}") from None
     means, sigmas = np.asarray(means, dtype=np.float64), np.asarray(sigmas, dtype=np.float64)
     if means.ndim < 1 or means.shape[-1] != len(MEASURES):
         raise ValueError(f"means must hold the {len(MEASURES)} measures {MEASURES} on its last axis, got shape "

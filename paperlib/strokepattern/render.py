@@ -17,11 +17,13 @@ __all__ = ["plot_boxes", "plot_graph", "plot_strokes"]
 
 
 def _flat_strokes(items) -> list:
+    if isinstance(items, (str, bytes, Stroke)) or not hasattr(items, "__iter__"):
+        raise ValueError(f"items must be a sequence of Strokes or Elements, got {type(items).__name__}")
     strokes = []
     for item in items:
         strokes.extend(item.strokes if isinstance(item, Element) else [item])
     if not all(isinstance(s, Stroke) for s in strokes):
-        raise ValueError("plot_strokes draws Strokes or Elements")
+        raise ValueError("items must hold Strokes or Elements (plot_strokes draws nothing else)")
     return strokes
 
 

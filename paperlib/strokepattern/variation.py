@@ -40,8 +40,10 @@ MIN_NEIGHBOURS = {1: 2, 2: 4}
 
 
 def _check_pair(synthesis, analysis) -> None:
-    if not isinstance(synthesis, Synthesis) or not isinstance(analysis, PatternAnalysis):
-        raise ValueError("expected a Synthesis and the PatternAnalysis it was synthesised from")
+    if not isinstance(synthesis, Synthesis):
+        raise ValueError(f"synthesis must be a Synthesis, got {type(synthesis).__name__}")
+    if not isinstance(analysis, PatternAnalysis):
+        raise ValueError(f"analysis must be the PatternAnalysis the synthesis was made from, got {type(analysis).__name__}")
     if synthesis.source.max(initial=-1) >= len(analysis):
         raise ValueError("the synthesis copies elements the analysis does not have: pass its own analysis")
 
