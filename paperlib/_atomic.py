@@ -26,6 +26,17 @@ def atomic_path(path):
     removed and ``path`` is left as it was. Missing parent folders are created. The
     temporary file's data are flushed to disk (fsync) before the rename and the folder's
     entry after it, so a power cut leaves the old file or the new one, never an empty one.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+
+    Yields
+    ------
+    pathlib.Path
+        A fresh temporary file in ``path``'s folder (same suffix), to write to; it replaces
+        ``path`` when the ``with`` block ends without an exception.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -39,15 +39,19 @@ def integer_at_least(value, name: str, minimum: int) -> int:
 __all__ += [
     "as_generator",
     "check_budget",
+    "check_choice",
     "check_edges",
     "check_flag",
     "check_rng",
     "data_frame",
     "file_path",
     "finite_array",
+    "float_array",
+    "real_number",
     "instance_of",
     "integer_array",
     "integer_in_range",
+    "label",
     "load_json",
     "budget",
     "point_array",
@@ -58,6 +62,21 @@ def integer_in_range(value, name: str, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, Integral) or not minimum <= value <= maximum:
         raise ValueError(f"{name} must be an integer in [{minimum}, {maximum}], got {value!r}")
     return int(value)
+
+
+def check_choice(value, choices, name: str):
+    """``value`` unchanged, or a ValueError naming ``name`` unless it is one of ``choices``.
+
+    Safe on any value: an array, a list or an unhashable object is refused with the message, never with
+    NumPy's "truth value of an array is ambiguous" or a TypeError from a set lookup.
+    """
+    try:
+        found = bool(value in choices)
+    except (TypeError, ValueError):
+        found = False
+    if not found:
+        raise ValueError(f"{name} must be one of {tuple(choices)}, got {value!r:.80}")
+    return value
 
 
 def check_flag(value, name: str) -> bool:
@@ -82,8 +101,16 @@ def check_budget(needed, limit, name: str, what: str) -> None:
         What is counted, e.g. ``"flattened points"``.
     """
     if needed > limit:
-        raise ValueError(f"this call needs {needed:,} {what}, above the budget {name}={limit:,}; "
+        raise ValueError(f"this call needs {_amount(needed)} {what}, above the budget {name}={_amount(limit)}; "
                          f"pass a larger {name}= to allow it (or reduce the input)")
+
+
+def _amount(value) -> str:
+    """A count for a message: with thousands separators, or in scientific notation when it is huge."""
+    try:
+        return f"{value:,}" if abs(value) < 10**15 else f"{float(value):.3g}"
+    except OverflowError:
+        return "more than 1e308"
 
 
 def budget(value, name: str) -> int:
@@ -137,6 +164,28 @@ def check_rng(rng, name: str = "rng"):
     return int(rng)
 
 
+def float_array(values, name: str, expected: str = "an array of numbers") -> np.ndarray:
+    """``values`` as a float64 array (``numpy.asarray``), or a ValueError naming ``name`` unless it is numeric.
+
+    Only the conversion: no check of shape or finiteness. ``expected`` completes "``name`` must be ...".
+    """
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be {expected}, got {type(values).__name__} {values!r:.40}")
+    try:
+        return np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be {expected}, got {type(values).__name__} {values!r:.40}") from None
+
+
+def real_number(value, name: str, expected: str = "a number") -> float:
+    """``value`` as a float (infinities and NaN pass through), or a ValueError naming ``name`` unless it is one
+    real number (a Python or NumPy scalar, or a 0-d array; not a string)."""
+    array = float_array(value, name, expected)
+    if array.ndim != 0:
+        raise ValueError(f"{name} must be {expected}, got an array of shape {array.shape}")
+    return float(array)
+
+
 def finite_array(values, name: str, *, ndim: int | None = None, min_size: int = 0,
                  shape: tuple | None = None, allow_infinite: bool = False) -> np.ndarray:
     """``values`` as a float64 array, or a ValueError naming ``name`` unless numeric, finite, of ``ndim``.
@@ -144,12 +193,7 @@ def finite_array(values, name: str, *, ndim: int | None = None, min_size: int = 
     ``shape``, when given, is the expected shape with ``None`` for a free axis (``(None, 4, 2)``);
     ``allow_infinite`` lets infinities through (NaN never passes).
     """
-    if isinstance(values, (str, bytes)):
-        raise ValueError(f"{name} must be an array of numbers, got {type(values).__name__} {values!r:.40}")
-    try:
-        array = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"{name} must be an array of numbers, got {type(values).__name__}") from None
+    array = float_array(values, name)
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-D ({ndim}-dimensional), got shape {array.shape}")
     if shape is not None and (array.ndim != len(shape) or any(
@@ -186,45 +230,58 @@ def integer_array(values, name: str) -> np.ndarray:
 
 def point_array(values, name: str, *, min_points: int = 0) -> np.ndarray:
     """``values`` as a finite float64 ``(n, 2)`` array with ``n >= min_points``, or a ValueError naming ``name``."""
-    array = finite_array(values, name)
+    array = float_array(values, name, "an (n, 2) array of numeric points")
     if array.ndim != 2 or array.shape[1] != 2:
         raise ValueError(f"{name} must be an (n, 2) array of points, got shape {array.shape}")
     if len(array) < min_points:
         raise ValueError(f"{name} needs at least {min_points} points, got {len(array)}")
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name} contains NaN or infinite values: points must be finite")
     return array
 
 
 def check_edges(edges, n_nodes: int, name: str = "edges") -> np.ndarray:
     """``edges`` as an int64 ``(m, 2)`` array of integer node pairs, each in ``[0, n_nodes)``, or a ValueError."""
+    n_nodes = integer_at_least(n_nodes, "n", 0)
     try:
         array = np.asarray(edges)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs") from None
+        raise ValueError(f"{name} must be an (m, 2) array of edges (integer node pairs)") from None
     if array.size == 0:
         return np.empty((0, 2), dtype=np.int64)
     if array.ndim != 2 or array.shape[1] != 2 or not np.issubdtype(array.dtype, np.integer):
-        raise ValueError(f"{name} must be an (m, 2) array of integer node pairs, got {array.dtype} of shape "
-                         f"{array.shape}")
+        raise ValueError(f"{name} must be an (m, 2) array of edges (integer node pairs), got {array.dtype} of "
+                         f"shape {array.shape}")
     if array.min() < 0 or array.max() >= n_nodes:
-        raise ValueError(f"{name} name nodes outside [0, {n_nodes}): {int(array.min())} to {int(array.max())}")
+        raise ValueError(f"{name} name nodes outside [0, {n_nodes}) (n = {n_nodes} nodes): "
+                         f"{int(array.min())} to {int(array.max())}")
     return array.astype(np.int64)
 
 
-def load_json(text, what: str):
+def load_json(text, what: str, name: str = "text"):
     """Parse JSON text, mapping every parser failure (syntax, nesting too deep) to a ValueError naming ``what``.
 
-    ``what`` is a noun phrase such as ``"a JSON script"``: messages read ``"not a JSON script: ..."``.
+    ``what`` is a noun phrase such as ``"a JSON script"``, ``name`` the caller's parameter the text came from:
+    messages read ``"text: not a JSON script: ..."``.
     """
     if isinstance(text, (bytes, bytearray)):
         text = bytes(text).decode("utf-8", errors="replace")
     if not isinstance(text, str):
-        raise TypeError(f"{what} must be JSON text (str), got {type(text).__name__}")
+        raise TypeError(f"{name} must be JSON text (str) holding {what}, got {type(text).__name__}")
     try:
         return json.loads(text)
     except json.JSONDecodeError as exc:
-        raise ValueError(f"not {what}: {exc}") from None
-    except RecursionError:
-        raise ValueError(f"{what} nests too deeply to be read") from None
+        raise ValueError(f"{name}: not {what}: {exc}") from exc
+    except RecursionError:   # no chaining: the recursion's traceback is thousands of frames
+        raise ValueError(f"{name}: {what} nests too deeply to be read") from None
+
+
+def label(value, name: str = "name") -> str:
+    """``value`` unchanged if it is a str: the ``name`` keyword of a validator, printed in its messages."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str (the parameter name printed in messages), got "
+                        f"{type(value).__name__} {value!r:.60}")
+    return value
 
 
 def instance_of(value, types, name: str):

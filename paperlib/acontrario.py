@@ -82,7 +82,7 @@ MAX_BINS = 4096
 class Interval:
     """An interval of histogram bins ``start..end`` (both inclusive, 0-based).
 
-    Attributes
+    Parameters
     ----------
     start, end : int
         First and last bin of the interval.
@@ -106,7 +106,7 @@ class Interval:
 class HistogramModes:
     """The a contrario reading of one histogram, as Hurtut 2009 section 2.2 uses it.
 
-    Attributes
+    Parameters
     ----------
     counts : ndarray of int64, shape (L,)
         The analysed histogram (read-only).
@@ -129,7 +129,14 @@ class HistogramModes:
     outliers: tuple[tuple[int, int], ...]
 
     def bin_labels(self) -> np.ndarray:
-        """Index of the MM-mode holding each bin, -1 for bins outside every mode."""
+        """Index of the MM-mode holding each bin, -1 for bins outside every mode.
+
+        Returns
+        -------
+        ndarray of int, shape (L,)
+            For each bin of :attr:`counts`, the index in :attr:`modes` of the MM-mode that
+            holds it, or -1 when no mode holds it.
+        """
         return _bin_labels([(mode.start, mode.end) for mode in self.modes], self.counts.size)
 
 
@@ -290,6 +297,23 @@ def gap_log10_nfa(counts, prior=None, *, max_bins: int = MAX_BINS) -> np.ndarray
     (Hurtut 2009 section 2.2, the inequality after eq. (1)). Parameters and layout as
     in :func:`interval_log10_nfa`.
 
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (non-negative integers, not all zero, L >= 2).
+    prior : array_like of float, shape (L,), optional
+        Bin probabilities of the background model (positive, summing to 1);
+        uniform by default, as in the paper.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`); the tables are
+        ``(L, L)``, so a larger histogram raises ValueError before allocating them.
+
+    Returns
+    -------
+    ndarray of float64, shape (L, L)
+        ``[a, b]`` holds the lower-tail log10 NFA of bins ``a..b`` as a gap for
+        ``a <= b``; ``+inf`` below the diagonal, where there is no interval.
+
     References
     ----------
     .. [1] Hurtut et al. 2009, section 2.2.
@@ -375,8 +399,24 @@ def meaningful_gaps(counts, epsilon: float = 1.0, prior=None, *, max_bins: int =
 
     Bins ``a..b`` form an epsilon-meaningful gap when they hold fewer samples than the
     background model expects (``k / M < p``) and ``N B(M, M - k, 1 - p) < epsilon``.
-    Parameters as in :func:`meaningful_intervals`; each gap carries its lower-tail
-    log10 NFA.
+    Each gap carries its lower-tail log10 NFA.
+
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (non-negative integers, not all zero, L >= 2).
+    epsilon : float, default 1
+        Threshold on the number of false alarms (> 0); 1 is the paper's choice.
+    prior : array_like of float, shape (L,), optional
+        Bin probabilities (positive, summing to 1); uniform by default.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`, see
+        :func:`interval_log10_nfa`).
+
+    Returns
+    -------
+    list of Interval
+        The meaningful gaps sorted by (start, end), each with its lower-tail log10 NFA.
 
     References
     ----------
@@ -390,7 +430,22 @@ def meaningful_gaps(counts, epsilon: float = 1.0, prior=None, *, max_bins: int =
 def meaningful_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> list[Interval]:
     """The epsilon-meaningful modes: meaningful intervals that contain no meaningful gap.
 
-    Parameters as in :func:`meaningful_intervals`.
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (non-negative integers, not all zero, L >= 2).
+    epsilon : float, default 1
+        Threshold on the number of false alarms (> 0); 1 is the paper's choice.
+    prior : array_like of float, shape (L,), optional
+        Bin probabilities (positive, summing to 1); uniform by default.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`, see
+        :func:`interval_log10_nfa`).
+
+    Returns
+    -------
+    list of Interval
+        The meaningful modes sorted by (start, end), each with its (upper-tail) log10 NFA.
 
     References
     ----------
@@ -414,8 +469,19 @@ def maximal_meaningful_modes(counts, epsilon: float = 1.0, prior=None, *, max_bi
     So among nested modes the most meaningful one wins, and on a tie the larger one.
     This is Desolneux, Moisan & Morel's definition, read with the binomial NFA of
     Hurtut's eq. (1) as the measure of meaningfulness (their book states it with the
-    relative entropy, where higher entropy means lower NFA). Parameters as in
-    :func:`meaningful_intervals`.
+    relative entropy, where higher entropy means lower NFA).
+
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (non-negative integers, not all zero, L >= 2).
+    epsilon : float, default 1
+        Threshold on the number of false alarms (> 0); 1 is the paper's choice.
+    prior : array_like of float, shape (L,), optional
+        Bin probabilities (positive, summing to 1); uniform by default.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`, see
+        :func:`interval_log10_nfa`).
 
     Returns
     -------
@@ -458,7 +524,7 @@ def outlier_intervals(counts, modes: Sequence[Interval | tuple[int, int]]) -> li
     .. [1] Hurtut et al. 2009, section 2.2 (categorization algorithm).
     """
     counts, _ = _validated_histogram(counts, None)
-    covered = _bin_labels(_as_bin_ranges(modes, counts.size), counts.size) >= 0
+    covered = _bin_labels(_as_bin_ranges(modes, counts.size, "modes"), counts.size) >= 0
     runs = _runs_of_true(~covered)
     return [(start, end) for start, end in runs if counts[start : end + 1].sum() > 0]
 
@@ -466,7 +532,17 @@ def outlier_intervals(counts, modes: Sequence[Interval | tuple[int, int]]) -> li
 def histogram_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> HistogramModes:
     """MM-modes and outlier intervals of a histogram, as Hurtut 2009 categorizes by.
 
-    Parameters as in :func:`meaningful_intervals`.
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (non-negative integers, not all zero, L >= 2).
+    epsilon : float, default 1
+        Threshold on the number of false alarms (> 0); 1 is the paper's choice.
+    prior : array_like of float, shape (L,), optional
+        Bin probabilities (positive, summing to 1); uniform by default.
+    max_bins : int
+        Budget: the most bins ``L`` accepted (default :data:`MAX_BINS`, see
+        :func:`interval_log10_nfa`).
 
     Returns
     -------
@@ -522,7 +598,7 @@ def interval_labels(values, bin_edges, intervals: Sequence[Interval | tuple[int,
     if np.any(np.diff(edges) <= 0):
         raise ValueError("bin_edges must be strictly increasing")
     n_bins = edges.size - 1
-    labels_of_bins = _bin_labels(_as_bin_ranges(intervals, n_bins), n_bins)
+    labels_of_bins = _bin_labels(_as_bin_ranges(intervals, n_bins, "intervals"), n_bins)
     bins = np.searchsorted(edges, values, side="right") - 1
     bins[values == edges[-1]] = n_bins - 1  # the last bin is closed, as in numpy
     inside = (bins >= 0) & (bins < n_bins)
@@ -660,12 +736,25 @@ def _as_finite_vector(values, name: str, *, min_size: int) -> np.ndarray:
     return finite_array(values, name, ndim=1, min_size=min_size)
 
 
-def _as_bin_ranges(intervals, n_bins: int) -> list[tuple[int, int]]:
-    """Inclusive (start, end) pairs from Interval objects or pairs, checked against L."""
+def _as_bin_ranges(intervals, n_bins: int, name: str) -> list[tuple[int, int]]:
+    """Inclusive (start, end) pairs from Interval objects or pairs, checked against L; ``name``: the caller's
+    parameter, for the messages."""
+    expected = "an Interval or a (start, end) pair of bin indices"
+    if isinstance(intervals, (str, bytes)):
+        raise TypeError(f"{name} must be a sequence of Interval or (start, end) pairs, got {intervals!r:.60}")
+    try:
+        intervals = list(intervals)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of Interval or (start, end) pairs, got "
+                        f"{type(intervals).__name__}") from None
     ranges = []
-    for interval in intervals:
-        start, end = (interval.start, interval.end) if isinstance(interval, Interval) else interval
-        if not (0 <= start <= end < n_bins):
-            raise ValueError(f"interval ({start}, {end}) is not a bin range within 0..{n_bins - 1}")
+    for index, interval in enumerate(intervals):
+        try:
+            start, end = (interval.start, interval.end) if isinstance(interval, Interval) else interval
+            inside = bool(0 <= start <= end < n_bins)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name}[{index}] must be {expected}, got {interval!r:.60}") from None
+        if not inside:
+            raise ValueError(f"{name}[{index}]: interval ({start}, {end}) is not a bin range within 0..{n_bins - 1}")
         ranges.append((int(start), int(end)))
     return ranges

@@ -47,7 +47,22 @@ _STATISTIC_REFERENCE = re.compile(r"^[A-Za-z0-9_\-]+\.[A-Za-z][A-Za-z0-9_.\-]*$"
 
 @dataclass(frozen=True)
 class Claim:
-    """One figure or quantitative sentence of a paper and the statistics that check it."""
+    """One figure or quantitative sentence of a paper and the statistics that check it.
+
+    Parameters
+    ----------
+    where : str
+        Where in the paper: ``"Fig. 8"``, ``"Figs. 7-8"``, ``"section 3.3"``, ``"eq. (4)"``, ...
+    claim : str
+        The paper's words, or a faithful paraphrase.
+    statistics : tuple of str
+        The recorded statistics that check it, each ``"<notebook>.<statistic>"``.
+    verdict : {"", "partly", "not"}, default ""
+        A verdict that lowers the one the statistics give; empty to keep it.
+    why : str, default ""
+        The reason, required without statistics, with a lowered verdict, or when a
+        statistic is an expected failure.
+    """
 
     where: str
     claim: str
@@ -58,14 +73,30 @@ class Claim:
 
 @dataclass(frozen=True)
 class Claims:
-    """A paper's claims file."""
+    """A paper's claims file.
+
+    Parameters
+    ----------
+    paper : str
+        The paper's key, the stem of its claims file (``"kim2009"``).
+    figures : int
+        The paper's figure count (>= 1): every Fig. 1..figures must be named by a claim.
+    claims : tuple of Claim
+        The claims, in the file's order.
+    """
 
     paper: str
     figures: int
     claims: tuple[Claim, ...]
 
     def figures_named(self) -> set[int]:
-        """The figure numbers that some claim's ``where`` names (``Figs. 7-8`` names 7 and 8)."""
+        """The figure numbers that some claim's ``where`` names (``Figs. 7-8`` names 7 and 8).
+
+        Returns
+        -------
+        set of int
+            The figure numbers named by the ``where`` of at least one claim.
+        """
         named = set()
         for claim in self.claims:
             for first, last in _FIGURE_REFERENCE.findall(claim.where):
@@ -75,6 +106,16 @@ class Claims:
 
 def load_claims(path) -> Claims:
     """Read and validate ``tests/claims/<paper>.toml``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The claims file, ``tests/claims/<paper>.toml``; its ``paper`` key must equal its stem.
+
+    Returns
+    -------
+    Claims
+        The validated claims.
 
     Raises
     ------
@@ -127,6 +168,19 @@ def claim_problems(claims: Claims, expected: dict) -> list[str]:
     Every referenced statistic must be expected; every ``kind = "paper"`` statistic of
     the paper's notebooks must be referenced; every figure must be named; a claim
     checked by an expected failure must say why.
+
+    Parameters
+    ----------
+    claims : Claims
+        A paper's claims (:func:`load_claims`).
+    expected : dict
+        The expected statistics, ``{notebook: {statistic: spec}}`` as read from
+        ``tests/expected_stats.toml`` (:func:`paperlib.repro.load_expected`).
+
+    Returns
+    -------
+    list of str
+        One message per problem, naming the paper and the claim; empty when complete.
     """
     instance_of(claims, Claims, "claims")
     for notebook, statistics in instance_of(expected, dict, "expected").items():
@@ -165,6 +219,14 @@ def ledger_table(claims: Claims, check: pd.DataFrame) -> pd.DataFrame:
     claims : Claims
     check : pandas.DataFrame
         The table of :func:`paperlib.repro.check_stats` for the paper's notebooks.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``where``, ``claim``, ``statistics`` (a list of ``(reference, kind, value,
+        status)`` tuples, status ``"not run"`` for a statistic absent from ``check``),
+        ``verdict`` (one of :data:`VERDICTS`, lowered by the claim's own verdict) and ``why``;
+        one row per claim, in order.
     """
     instance_of(claims, Claims, "claims")
     data_frame(check, "check", ("notebook", "statistic", "kind", "value", "status"))
@@ -202,7 +264,22 @@ def _verdict(statuses: list[str]) -> str:
 
 
 def write_ledger(path, title: str, table: pd.DataFrame) -> Path:
-    """Write a ledger table (:func:`ledger_table`) as Markdown at ``path``, atomically."""
+    """Write a ledger table (:func:`ledger_table`) as Markdown at ``path``, atomically.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The Markdown file to write (``figures/ledger_<paper>.md``); replaced atomically.
+    title : str
+        Title of the ledger, after ``# Claims ledger:``.
+    table : pandas.DataFrame
+        A ledger table of :func:`ledger_table`.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``, as written.
+    """
     path = file_path(path)
     instance_of(title, str, "title")
     data_frame(table, "table", ("where", "claim", "statistics", "verdict", "why"))

@@ -38,6 +38,11 @@ def spawn_seeds(rng, n: int) -> list[np.random.SeedSequence]:
         Generator gives children that depend on how many it has already spawned.
     n : int
         Number of children.
+
+    Returns
+    -------
+    list of numpy.random.SeedSequence
+        ``n`` independent child seed sequences, one per run.
     """
     n = integer_in_range(n, "n", 0, MAX_SEEDS)
     rng = check_rng(rng)

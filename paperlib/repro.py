@@ -56,7 +56,7 @@ import numpy as np
 import pandas as pd
 
 from ._atomic import atomic_path
-from ._checks import file_path, instance_of, load_json
+from ._checks import check_choice, file_path, instance_of, load_json
 
 __all__ = [
     "QUALITIES",
@@ -163,8 +163,7 @@ def start(out_dir, *, seed, quality) -> Path:
         If ``out_dir`` is not a str or path.
     """
     out_dir = _output_folder(out_dir)
-    if quality not in QUALITIES:
-        raise ValueError(f"quality must be one of {QUALITIES}, got {quality!r}")
+    check_choice(quality, QUALITIES, "quality")
     if not isinstance(seed, Integral) or isinstance(seed, bool):
         raise ValueError(f"seed must be an int, got {seed!r}")
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -191,7 +190,13 @@ def _output_folder(out_dir) -> Path:
 
 
 def current_out_dir() -> Path:
-    """The output folder of the run begun by :func:`start`."""
+    """The output folder of the run begun by :func:`start`.
+
+    Returns
+    -------
+    pathlib.Path
+        The ``out_dir`` given to :func:`start`.
+    """
     return _require_run().out_dir
 
 
@@ -245,6 +250,11 @@ def record(name: str, value):
         with ``time_`` are wall times (checked against an upper bound only).
     value : number, bool, str, list or dict
         NumPy scalars and arrays are converted; NaN and infinities are rejected.
+
+    Returns
+    -------
+    object
+        ``value``, unchanged (so that a cell can record and use it in one expression).
     """
     run = _require_run()
     if not isinstance(name, str) or not _NAME_PATTERN.match(name):
@@ -260,6 +270,17 @@ def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Pa
 
     Files are written atomically and without timestamps, so the same figure gives the
     same bytes and an interrupted run leaves no partial file.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to save.
+    name : str
+        File stem: letters, digits, ``_``, ``.``, ``-``, starting with a letter.
+    svg : bool, default False
+        Also write ``<name>.svg``.
+    dpi : int, default 100
+        Resolution of the PNG, dots per inch.
 
     Returns
     -------
@@ -284,7 +305,19 @@ def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Pa
 
 
 def load_stats(path) -> dict:
-    """Read a ``stats.json`` file written by :func:`start` and :func:`record`."""
+    """Read a ``stats.json`` file written by :func:`start` and :func:`record`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``stats.json`` file.
+
+    Returns
+    -------
+    dict
+        The parsed file: ``statistics`` (``{name: value}``) and, when present, ``notebook``,
+        ``quality`` and ``seed``.
+    """
     path = file_path(path)
     try:
         text = path.read_text()
@@ -292,7 +325,7 @@ def load_stats(path) -> dict:
         raise ValueError(f"path={str(path)!r}: no stats.json (did the notebook call paperlib.repro.start?)") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: cannot read stats.json ({exc})") from None
-    data = load_json(text, f"{path}: a stats.json")
+    data = load_json(text, f"a stats.json ({path})", "path")
     if not isinstance(data, dict) or not isinstance(data.get("statistics"), dict):
         raise ValueError(f"{path}: expected an object with a 'statistics' table")
     for key, expected in (("notebook", str), ("quality", str), ("seed", int)):
@@ -302,7 +335,18 @@ def load_stats(path) -> dict:
 
 
 def statistics_without_times(data: dict) -> dict:
-    """The statistics of a loaded ``stats.json`` minus wall times (for comparing runs)."""
+    """The statistics of a loaded ``stats.json`` minus wall times (for comparing runs).
+
+    Parameters
+    ----------
+    data : dict
+        A loaded ``stats.json`` (:func:`load_stats`), with a ``statistics`` table.
+
+    Returns
+    -------
+    dict
+        ``{name: value}`` of its statistics whose names do not start with ``time_``.
+    """
     statistics = instance_of(data, dict, "data").get("statistics")
     if not isinstance(statistics, dict):
         raise ValueError(f"data must be a loaded stats.json with a 'statistics' table, got keys {list(data)[:8]}")
@@ -320,6 +364,12 @@ def load_expected(path, notebooks=None) -> dict:
         Return and validate only these notebooks' statistics (so that running one
         notebook does not depend on another's entries); a notebook without entries
         gets none.
+
+    Returns
+    -------
+    dict
+        ``{notebook: {statistic: spec}}``, each spec a dict of the entry's keys (``kind``,
+        bounds, ``xfail``, ...); only the asked ``notebooks`` when given.
 
     Raises
     ------

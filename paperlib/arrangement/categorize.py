@@ -232,7 +232,7 @@ def _read_only(array) -> np.ndarray:
 class FeatureHistogram:
     """One histogram of section 2.2 with its a contrario reading and the groups it defines.
 
-    Attributes
+    Parameters
     ----------
     values : ndarray, shape (m,)
         The histogrammed values: normalised areas, or scores on the first robust component.
@@ -281,7 +281,7 @@ class FeatureHistogram:
 class AreaCategory:
     """One category of the first (area) stage and what the second stage made of it.
 
-    Attributes
+    Parameters
     ----------
     name : str
         ``"area<i>"`` (an MM-mode of the area histogram) or ``"outlier<j>"`` (an outlier run).
@@ -335,7 +335,7 @@ class AreaCategory:
 class Split:
     """One node of the recursive categorization: a group of elements and how it was divided.
 
-    Attributes
+    Parameters
     ----------
     name : str
         ``"all"`` for the root, else the path of the groups it descends from, e.g.
@@ -369,7 +369,7 @@ class Split:
 class Categorization:
     """Categories of the elements of an arrangement (Hurtut 2009, section 2.2).
 
-    Attributes
+    Parameters
     ----------
     labels : ndarray of int64, shape (n,)
         Category of each element, ``0 .. K-1``, indexing ``categories``.
@@ -422,7 +422,23 @@ class Categorization:
         return np.array(["outlier" in name for name in self.categories], dtype=bool)
 
     def members(self, category) -> np.ndarray:
-        """Indices of the elements of a category, given by name or label."""
+        """Indices of the elements of a category, given by name or label.
+
+        Parameters
+        ----------
+        category : str or int
+            A category name (an entry of ``categories``) or its label (an index into ``categories``).
+
+        Returns
+        -------
+        ndarray of int
+            Indices of the elements of that category in the input, increasing.
+
+        Raises
+        ------
+        KeyError
+            When ``category`` is a name that is not one of ``categories``.
+        """
         if isinstance(category, str):
             if category not in self.categories:
                 raise KeyError(f"no category {category!r}; categories are {list(self.categories)}")

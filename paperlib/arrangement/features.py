@@ -175,23 +175,63 @@ def normalized_area(area, reference_area):
         Box areas, in the units of ``reference_area``.
     reference_area : float
         Area of the reference arrangement's surface (> 0).
+
+    Returns
+    -------
+    ndarray of float64
+        ``min(area / (0.05 * reference_area), 1)``, the shape of ``area``, in ``[0, 1]`` for
+        non-negative areas.
     """
     area = finite_array(area, "area", allow_infinite=True)
     return np.minimum(area / (AREA_FRACTION * positive_number(reference_area, "reference_area")), 1.0)
 
 
 def normalized_orientation(angle):
-    """Major-axis angle in ``[0, pi)`` over 2 pi, so in ``[0, 0.5)`` (Hurtut 2009, section 2.1)."""
+    """Major-axis angle in ``[0, pi)`` over 2 pi, so in ``[0, 0.5)`` (Hurtut 2009, section 2.1).
+
+    Parameters
+    ----------
+    angle : float or array_like
+        Angles of the elements' major axes in radians, in ``[0, pi)``.
+
+    Returns
+    -------
+    ndarray of float64
+        ``angle / (2 pi)``, the shape of ``angle``.
+    """
     return finite_array(angle, "angle") / ORIENTATION_PERIOD
 
 
 def normalized_elongation(elongation):
-    """Elongation over 3, capped at 1 (Hurtut 2009, section 2.1); infinite elongation gives 1."""
+    """Elongation over 3, capped at 1 (Hurtut 2009, section 2.1); infinite elongation gives 1.
+
+    Parameters
+    ----------
+    elongation : float or array_like
+        Elongations of the elements' oriented boxes (major over minor extent, >= 1;
+        ``inf`` for a degenerate box).
+
+    Returns
+    -------
+    ndarray of float64
+        ``min(elongation / 3, 1)``, the shape of ``elongation``.
+    """
     return np.minimum(finite_array(elongation, "elongation", allow_infinite=True) / ELONGATION_CAP, 1.0)
 
 
 def normalized_count(count):
-    """Number of extremities or crossings over 10, not capped (Hurtut 2009, section 2.1)."""
+    """Number of extremities or crossings over 10, not capped (Hurtut 2009, section 2.1).
+
+    Parameters
+    ----------
+    count : int or array_like of int
+        Numbers of extremities or crossings of the elements (finite).
+
+    Returns
+    -------
+    ndarray of float64
+        ``count / 10``, the shape of ``count``.
+    """
     return finite_array(count, "count") / COUNT_SCALE
 
 

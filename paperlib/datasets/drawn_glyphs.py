@@ -87,7 +87,7 @@ _MAX_TRIES = 2000
 class GlyphType:
     """One type of an arrangement: a glyph, its mean size and how many elements are drawn.
 
-    Attributes
+    Parameters
     ----------
     char : str
         A single character of the Hershey font.
@@ -256,11 +256,21 @@ def _placed(elements, frame: Window, rng: np.random.Generator) -> np.ndarray:
 def _types(types) -> tuple:
     if isinstance(types, GlyphType):
         types = (types,)
-    try:
-        types = tuple(t if isinstance(t, GlyphType) else GlyphType(*t) for t in types)
-    except TypeError:
-        raise TypeError("types must be a sequence of GlyphType or (char, size, count[, name]) tuples, "
-                        f"got {types!r}") from None
+    expected = "a sequence of GlyphType or (char, size, count[, name]) tuples"
+    if isinstance(types, (str, bytes)) or not hasattr(types, "__iter__"):
+        raise TypeError(f"types must be {expected}, got {types!r:.80}")
+    checked = []
+    for index, item in enumerate(types):
+        if isinstance(item, GlyphType):
+            checked.append(item)
+            continue
+        try:
+            checked.append(GlyphType(*item))
+        except TypeError as err:  # not a tuple, the wrong number of fields, or a field of the wrong type
+            raise TypeError(f"types must be {expected}; types[{index}] = {item!r:.60} is not ({err})") from None
+        except ValueError as err:  # a field out of range
+            raise ValueError(f"types[{index}]: {err}") from None
+    types = tuple(checked)
     if not types:
         raise ValueError("types must hold at least one glyph type, got none")
     names = [t.name for t in types]

@@ -113,7 +113,7 @@ AMACRINE_FIXTURE = Path("tests") / "oracle" / "summary.json"
 class Exemplar:
     """An arrangement of glyph elements with the ground truth that generated it.
 
-    Attributes
+    Parameters
     ----------
     elements : list of Element
         One glyph per point, in the order of ``pattern.points``.

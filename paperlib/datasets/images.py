@@ -84,7 +84,13 @@ GRAYSCALE_FILES = {
 
 
 def photograph_names() -> list[str]:
-    """Names of the bundled colour photographs, sorted (see the module docstring)."""
+    """Names of the bundled colour photographs, sorted (see the module docstring).
+
+    Returns
+    -------
+    list of str
+        The photograph names, sorted.
+    """
     return sorted(PHOTOGRAPH_FILES)
 
 
@@ -93,6 +99,11 @@ def grayscale_names() -> list[str]:
 
     The native grayscale images plus every colour photograph (converted to
     luminance).
+
+    Returns
+    -------
+    list of str
+        The names, sorted.
     """
     return sorted({**GRAYSCALE_FILES, **PHOTOGRAPH_FILES})
 

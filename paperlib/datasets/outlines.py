@@ -83,7 +83,13 @@ _FLATTEN_SIZE = 1000.0
 
 
 def outline_names() -> list[str]:
-    """Names of the available outlines, sorted (see the module docstring)."""
+    """Names of the available outlines, sorted (see the module docstring).
+
+    Returns
+    -------
+    list of str
+        The outline names, sorted.
+    """
     return sorted(OUTLINE_CODEPOINTS)
 
 
@@ -164,5 +170,21 @@ def glyph_outline(name: str, n_points: int | None = None, *, max_points: int = M
 
 
 def glyph_outlines(n_points: int | None = None, *, max_points: int = MAX_RESAMPLE_POINTS) -> dict[str, np.ndarray]:
-    """All outlines, keyed by name in sorted order; see :func:`glyph_outline`."""
+    """All outlines, keyed by name in sorted order; see :func:`glyph_outline`.
+
+    Parameters
+    ----------
+    n_points : int, optional
+        If given (>= 3), resample every outline to exactly this many points equally spaced in
+        arc length; by default the vertices of matplotlib's flattening (see :func:`glyph_outline`).
+    max_points : int, optional
+        Budget: the largest ``n_points`` allowed (default
+        :data:`paperlib.geometry.curves.MAX_RESAMPLE_POINTS`, 10**7).
+
+    Returns
+    -------
+    dict of str to ndarray
+        ``{name: outline}`` for every name of :func:`outline_names`, in sorted order; each
+        outline a read-only float64 array of shape (n, 2), as :func:`glyph_outline` returns.
+    """
     return {name: glyph_outline(name, n_points, max_points=max_points) for name in outline_names()}

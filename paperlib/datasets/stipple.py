@@ -72,7 +72,7 @@ import math
 import numba
 import numpy as np
 
-from paperlib._checks import as_generator, budget, check_budget, positive_number
+from paperlib._checks import as_generator, budget, check_budget, check_flag, positive_number
 
 __all__ = ["andrews_like_tones", "stipple_tone_sheet", "stipple_tone_texture"]
 
@@ -313,6 +313,9 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
         mostly even spacing with a few closer pairs, like a hand's.
     return_truth : bool, optional
         Also return the generating truth.
+    max_pixels : int, optional
+        Budget: the most pixels (``size * size``) allowed (default :data:`MAX_PIXELS`, 2**23);
+        a larger texture raises ValueError before allocating it.
 
     Returns
     -------
@@ -354,6 +357,7 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
     if not light_max < dark_min < 1.0:
         raise ValueError(f"dark_min must lie in (light_max = {light_max}, 1), got {dark_min!r}")
     hard_core = _check_hard_core(hard_core)
+    return_truth = check_flag(return_truth, "return_truth")
     regimes = (light_max, dark_min, hard_core)
     image, truth = _tone_texture(tone, (size, size), as_generator(rng), mark_radius, *regimes)
     return (image, truth) if return_truth else image
@@ -419,6 +423,7 @@ def andrews_like_tones(size=256, rng=None, *, return_truth=False, max_pixels=MAX
         Tones 1-8, lightest first, ``True`` = ink.
     """
     size = _check_size(size, "size", MIN_SIZE)
+    return_truth = check_flag(return_truth, "return_truth")
     _check_pixels(len(ANDREWS_LIKE_INK) * size * size, max_pixels)
     generator = as_generator(rng)
     made = [stipple_tone_texture(ink, size, generator, return_truth=True, max_pixels=max_pixels,

@@ -86,7 +86,7 @@ import numpy as np
 import shapely
 from matplotlib.colors import to_hex
 
-from paperlib._checks import as_generator, budget, check_budget, positive_number
+from paperlib._checks import as_generator, budget, check_budget, check_choice, positive_number
 from paperlib.geometry import Stroke
 
 __all__ = [
@@ -136,7 +136,7 @@ _COLOR_RAMP_ENDS = ((0.85, 0.2, 0.1), (0.1, 0.2, 0.85))
 class StrokePatternExemplar:
     """A synthetic reference stroke pattern with its ground-truth elements.
 
-    Attributes
+    Parameters
     ----------
     strokes : tuple of Stroke
         The pattern in drawing order.
@@ -285,7 +285,8 @@ def _region_centers(width: float, height: float, spacing: float, rng, *,
     share a class)."""
     lattice = _lattice(width, height, spacing, hexagonal=hexagonal)
     if lattice.shape[0] < 3:
-        raise ValueError(f"a {width:g} x {height:g} region holds fewer than 3 elements: make it larger")
+        raise ValueError(f"a width x height = {width:g} x {height:g} region holds fewer than 3 elements: make it "
+                         f"larger")
     lattice = lattice[_drawing_order(lattice, spacing / 2.0)]
     steps = np.array([spacing / 2.0, spacing * math.sqrt(3.0) / 2.0]) if hexagonal else np.array([spacing, spacing])
     cells = np.round((lattice - lattice.min(axis=0)) / steps).astype(int)
@@ -529,8 +530,7 @@ def gradient_hatching_exemplar(parameter, n_elements=30, *, spacing=1.0, jitter=
     Barla et al. 2006, Figure 6 c-e (smooth changes of orientation, length and thickness) and section 3.1
     (the thresholds).
     """
-    if parameter not in _GRADIENT_RANGES:
-        raise ValueError(f"parameter must be one of {sorted(_GRADIENT_RANGES)}, got {parameter!r}")
+    check_choice(parameter, sorted(_GRADIENT_RANGES), "parameter")
     n, spacing = _check_1d(n_elements, spacing, max_elements)
     jitter = _between(jitter, "jitter", 0.0, 3.0)
     rng = as_generator(rng)

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._checks import check_flag, finite_array
+from .._checks import check_flag, finite_array, float_array
 from .strokes import Element, StackedStrokes, as_points, stack_strokes
 
 __all__ = ["OrientedBox", "OrientedBoxes", "oriented_bounding_box", "oriented_bounding_boxes"]
@@ -140,6 +140,20 @@ class OrientedBox:
         """The box with the given centre, ``(major, minor)`` half lengths and major-axis angle.
 
         The angle is reduced modulo pi.
+
+        Parameters
+        ----------
+        center : array_like, shape (2,)
+            Centre of the rectangle.
+        half_lengths : array_like, shape (2,)
+            Half extents along the major and the minor axis, ``major >= minor >= 0``.
+        angle : float
+            Direction of the major axis, in radians (any value; reduced to ``[0, pi)``).
+
+        Returns
+        -------
+        OrientedBox
+            The box, with ``axes`` the rotation by the reduced angle.
         """
         angle = float(np.mod(angle, np.pi))
         return cls(center, _rotation(angle), half_lengths, angle)
@@ -160,7 +174,13 @@ class OrientedBox:
         return float(2.0 * np.hypot(*self.half_lengths))
 
     def corners(self) -> np.ndarray:
-        """The four corners, shape ``(4, 2)``, counter-clockwise."""
+        """The four corners, shape ``(4, 2)``, counter-clockwise.
+
+        Returns
+        -------
+        ndarray, shape (4, 2)
+            The corners, counter-clockwise.
+        """
         return _corners(self.center, self.axes, self.half_lengths)
 
 
@@ -168,12 +188,16 @@ class OrientedBox:
 class OrientedBoxes:
     """Many oriented boxes as arrays, one row per box (see :class:`OrientedBox`).
 
-    Attributes
+    Parameters
     ----------
     centers : ndarray, shape (n, 2)
+        Centre of each box.
     axes : ndarray, shape (n, 2, 2)
+        Unit column vectors ``[major, minor]`` of each box.
     half_lengths : ndarray, shape (n, 2)
+        Half extents along the major and the minor axis of each box.
     angles : ndarray, shape (n,)
+        Direction of each box's major axis, in ``[0, pi)``.
     """
 
     centers: np.ndarray
@@ -183,7 +207,7 @@ class OrientedBoxes:
 
     def __post_init__(self):
         for name in ("centers", "axes", "half_lengths", "angles"):
-            object.__setattr__(self, name, _read_only(getattr(self, name)))
+            object.__setattr__(self, name, _read_only(float_array(getattr(self, name), name)))
 
     def __len__(self) -> int:
         return self.angles.shape[0]
@@ -210,7 +234,13 @@ class OrientedBoxes:
         return 2.0 * np.hypot(self.half_lengths[:, 0], self.half_lengths[:, 1])
 
     def corners(self) -> np.ndarray:
-        """Corners of every box, shape ``(n, 4, 2)``, counter-clockwise."""
+        """Corners of every box, shape ``(n, 4, 2)``, counter-clockwise.
+
+        Returns
+        -------
+        ndarray, shape (n, 4, 2)
+            The corners of each box, counter-clockwise.
+        """
         return _corners(self.centers, self.axes, self.half_lengths)
 
 

@@ -17,11 +17,27 @@ from functools import cached_property
 
 import numpy as np
 
+from paperlib._checks import integer_at_least, label, point_array, positive_number
+
 __all__ = ["Element", "StackedStrokes", "Stroke", "as_elements", "as_points", "stack_strokes"]
 
 
 def as_points(points, *, name: str = "points", min_points: int = 1) -> np.ndarray:
     """Validate and return a read-only float64 ``(n, 2)`` copy of ``points``.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        Point coordinates (finite numbers).
+    name : str, default "points"
+        How error messages name the argument.
+    min_points : int, default 1
+        The fewest points (rows) accepted.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 2)
+        A read-only copy of ``points``.
 
     Raises
     ------
@@ -29,16 +45,9 @@ def as_points(points, *, name: str = "points", min_points: int = 1) -> np.ndarra
         If the array is not ``(n, 2)``, has fewer than ``min_points`` rows, or holds
         NaN or infinite coordinates.
     """
-    try:
-        array = np.array(points, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be numeric (n, 2) coordinates: {exc}") from None
-    if array.ndim != 2 or array.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (n, 2), got {array.shape}")
-    if array.shape[0] < min_points:
-        raise ValueError(f"{name} needs at least {min_points} point(s), got {array.shape[0]}")
-    if not np.isfinite(array).all():
-        raise ValueError(f"{name} contains NaN or infinite coordinates")
+    name = label(name)
+    min_points = integer_at_least(min_points, "min_points", 0)
+    array = np.array(point_array(points, name, min_points=min_points))
     array.setflags(write=False)
     return array
 
@@ -63,10 +72,7 @@ class Stroke:
 
     def __post_init__(self):
         object.__setattr__(self, "points", as_points(self.points, name="stroke points"))
-        width = float(self.width)
-        if not np.isfinite(width) or width <= 0:
-            raise ValueError(f"stroke width must be a positive finite number, got {self.width!r}")
-        object.__setattr__(self, "width", width)
+        object.__setattr__(self, "width", positive_number(self.width, "width"))
         if not isinstance(self.color, str) or not self.color:
             raise ValueError(f"stroke color must be a non-empty SVG colour string, got {self.color!r}")
 
@@ -85,7 +91,13 @@ class Stroke:
     __hash__ = None
 
     def length(self) -> float:
-        """Arc length of the polyline."""
+        """Arc length of the polyline.
+
+        Returns
+        -------
+        float
+            Sum of the lengths of its segments, in the units of the coordinates.
+        """
         return float(np.hypot(*np.diff(self.points, axis=0).T).sum())
 
     def transformed(self, matrix, offset=(0.0, 0.0)) -> "Stroke":
@@ -93,6 +105,18 @@ class Stroke:
 
         The width is scaled by sqrt(|det matrix|), the factor by which the map scales
         lengths on average, so a uniformly scaled glyph keeps its look.
+
+        Parameters
+        ----------
+        matrix : array_like, shape (2, 2)
+            Linear part of the map (finite, non-singular).
+        offset : array_like, shape (2,), default (0, 0)
+            Translation applied after ``matrix`` (finite).
+
+        Returns
+        -------
+        Stroke
+            A new stroke with mapped points, width scaled by sqrt(|det matrix|) and the same colour.
         """
         matrix = np.asarray(matrix, dtype=np.float64)
         if matrix.shape != (2, 2) or not np.isfinite(matrix).all():
@@ -142,13 +166,33 @@ class Element:
         return np.vstack([stroke.points for stroke in self.strokes])
 
     def bounds(self) -> tuple[float, float, float, float]:
-        """Axis-aligned bounding box ``(xmin, ymin, xmax, ymax)`` of the vertices."""
+        """Axis-aligned bounding box ``(xmin, ymin, xmax, ymax)`` of the vertices.
+
+        Returns
+        -------
+        tuple of float
+            ``(xmin, ymin, xmax, ymax)`` over the vertices of all its strokes.
+        """
         points = self.points
         (xmin, ymin), (xmax, ymax) = points.min(axis=0), points.max(axis=0)
         return float(xmin), float(ymin), float(xmax), float(ymax)
 
     def transformed(self, matrix, offset=(0.0, 0.0)) -> "Element":
-        """Return the element with every stroke mapped by ``x -> matrix @ x + offset``."""
+        """Return the element with every stroke mapped by ``x -> matrix @ x + offset``.
+
+        Parameters
+        ----------
+        matrix : array_like, shape (2, 2)
+            Linear part of the map (finite, non-singular).
+        offset : array_like, shape (2,), default (0, 0)
+            Translation applied after ``matrix``.
+
+        Returns
+        -------
+        Element
+            A new element with the same name; each stroke mapped as :meth:`Stroke.transformed`
+            does (widths scaled by sqrt(|det matrix|)).
+        """
         return Element(tuple(s.transformed(matrix, offset) for s in self.strokes), self.name)
 
 
@@ -158,6 +202,20 @@ def as_elements(elements, *, name: str = "elements", min_count: int = 0) -> list
     The one check behind every function that takes a drawing (SVG output, stacking,
     categorization, synthesis), so that all of them refuse bad input alike.
 
+    Parameters
+    ----------
+    elements : iterable of Element
+        The drawing; a single Element or Stroke is refused.
+    name : str, default "elements"
+        How error messages name the argument.
+    min_count : int, default 0
+        The fewest elements accepted.
+
+    Returns
+    -------
+    list of Element
+        The elements, in order.
+
     Raises
     ------
     TypeError
@@ -166,18 +224,24 @@ def as_elements(elements, *, name: str = "elements", min_count: int = 0) -> list
     ValueError
         If there are fewer than ``min_count`` elements.
     """
+    name = label(name)
+    min_count = integer_at_least(min_count, "min_count", 0)
     if isinstance(elements, (Element, Stroke)):
-        raise TypeError(f"{name} must be a sequence of Element, got one {type(elements).__name__}: wrap it in a list")
+        raise TypeError(f"{name} must be a sequence of Element (a list of elements), got one "
+                        f"{type(elements).__name__}: wrap it in a list")
     try:
         elements = list(elements)
     except TypeError:
-        raise TypeError(f"{name} must be a sequence of Element, got {type(elements).__name__}") from None
+        raise TypeError(f"{name} must be a sequence of Element (a list of elements), got "
+                        f"{type(elements).__name__}") from None
     for index, element in enumerate(elements):
         if not isinstance(element, Element):
-            raise TypeError(f"{name}[{index}] is a {type(element).__name__}, expected paperlib.geometry.Element")
+            raise TypeError(f"{name}[{index}] is a {type(element).__name__}, expected paperlib.geometry.Element "
+                            f"({name} must hold only elements)")
     if len(elements) < min_count:
         plural = "" if min_count == 1 else "s"
-        raise ValueError(f"{name} needs at least {min_count} element{plural}, got {len(elements)}")
+        raise ValueError(f"{name} needs at least {min_count} element{plural}, got {len(elements)} "
+                         f"(min_count={min_count})")
     return elements
 
 
@@ -191,7 +255,7 @@ class StackedStrokes:
     Built by :func:`stack_strokes`. Consecutive repeated vertices are dropped, so every segment
     has positive length; a stroke of zero length keeps a single vertex and has no segment.
 
-    Attributes
+    Parameters
     ----------
     vertices : ndarray, shape (n, 2)
         All vertices, stroke after stroke, element after element.
@@ -241,6 +305,11 @@ def stack_strokes(elements) -> StackedStrokes:
     ----------
     elements : sequence of Element
         At least one element.
+
+    Returns
+    -------
+    StackedStrokes
+        The vertices, stroke offsets, stroke elements and widths as flat arrays.
 
     Raises
     ------

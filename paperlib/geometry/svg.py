@@ -179,22 +179,34 @@ def read_svg(path_or_text, *, tolerance: float = DEFAULT_TOLERANCE, y_up: bool =
     .. [2] T. Hurtut et al., "Appearance-guided Synthesis of Element Arrangements by
        Example", NPAR 2009, section 2.
     """
+    return _read_elements(path_or_text, "path_or_text", tolerance=tolerance, y_up=y_up, max_points=max_points,
+                          max_bytes=max_bytes)
+
+
+def _read_elements(source, name: str, *, tolerance, y_up: bool, max_points, max_bytes) -> list[Element]:
+    """:func:`read_svg` for a public function whose SVG parameter is called ``name``: every rejection of the
+    document (unreadable, malformed, nothing drawable, over a budget) is a ValueError starting ``"{name}: "``.
+    Call it directly from a public function (the warning about skipped subpaths names that function's caller)."""
     tolerance = _check_tolerance(tolerance)
     points = _PointBudget(budget(max_points, "max_points"))
-    document = _parse_svg(_read_source(path_or_text, budget(max_bytes, "max_bytes")))
+    max_bytes = budget(max_bytes, "max_bytes")
     try:
-        elements, degenerate = _document_elements(document, tolerance, y_up, points)
-    except (ArithmeticError, AttributeError, IndexError, TypeError, KeyError, RecursionError) as exc:
-        # svgelements and float arithmetic fail on hostile data with assorted types: report it as bad SVG
-        raise ValueError(f"malformed SVG: cannot flatten its shapes ({type(exc).__name__}: {exc})") from None
-    if degenerate:
-        _warn_skipped(degenerate, stacklevel=3)
-    if not elements:
-        raise ValueError(
-            "the SVG has no drawable element: no path, line, polyline, polygon, rect, circle or ellipse "
-            "with a visible stroke or fill and a non-zero length"
-            + (f" ({len(degenerate)} degenerate subpath(s) skipped)" if degenerate else "")
-        )
+        document = _parse_svg(_read_source(source, max_bytes, name))
+        try:
+            elements, degenerate = _document_elements(document, tolerance, y_up, points)
+        except (ArithmeticError, AttributeError, IndexError, TypeError, KeyError, RecursionError) as exc:
+            # svgelements and float arithmetic fail on hostile data with assorted types: report it as bad SVG
+            raise ValueError(f"malformed SVG: cannot flatten its shapes ({type(exc).__name__}: {exc})") from None
+        if degenerate:
+            _warn_skipped(degenerate, stacklevel=4)
+        if not elements:
+            raise ValueError(
+                "the SVG has no drawable element: no path, line, polyline, polygon, rect, circle or ellipse "
+                "with a visible stroke or fill and a non-zero length"
+                + (f" ({len(degenerate)} degenerate subpath(s) skipped)" if degenerate else "")
+            )
+    except ValueError as err:
+        raise ValueError(f"{name}: {err}") from err
     return elements
 
 
@@ -248,12 +260,13 @@ def _check_tolerance(tolerance) -> float:
     return value
 
 
-def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES) -> str | bytes:
+def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES, name: str = "path_or_text") -> str | bytes:
     """The document's text: ``str`` text as given, file contents as bytes (so that the
     XML parser honours their encoding declaration), gzip (.svgz) decompressed; at most
-    ``max_bytes`` either way."""
+    ``max_bytes`` either way. ``name`` is the caller's parameter, for the TypeError (the caller
+    prefixes its ValueErrors with it)."""
     if isinstance(path_or_text, str) and not path_or_text.strip():
-        raise ValueError("path_or_text must be SVG text or a file name, got an empty string")
+        raise ValueError("must be SVG text or a file name, got an empty string")
     if isinstance(path_or_text, str) and path_or_text.lstrip("\ufeff \t\r\n").startswith("<"):
         return path_or_text.lstrip("\ufeff")
     if isinstance(path_or_text, (bytes, bytearray)):
@@ -269,7 +282,7 @@ def _read_source(path_or_text, max_bytes: int = MAX_DOCUMENT_BYTES) -> str | byt
         check_budget(path.stat().st_size, max_bytes, "max_bytes", "bytes of SVG file")
         data = path.read_bytes()
     else:
-        raise TypeError(f"path_or_text must be an SVG file name or SVG text, got {type(path_or_text).__name__}")
+        raise TypeError(f"{name} must be an SVG file name or SVG text, got {type(path_or_text).__name__}")
     check_budget(len(data), max_bytes, "max_bytes", "bytes of SVG")
     if data[:2] == b"\x1f\x8b":
         data = _gunzip(data, max_bytes)

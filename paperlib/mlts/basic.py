@@ -48,7 +48,8 @@ import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
-from paperlib._checks import as_generator, budget, check_budget, positive_number
+from paperlib._checks import (as_generator, budget, check_budget, check_flag, float_array, point_array,
+                              positive_number)
 
 __all__ = [
     "DEFAULT_PALETTE",
@@ -122,7 +123,7 @@ def _check_palette(palette) -> np.ndarray:
     """An ``(n, 3)`` float array of RGB colours in [0, 1] (``None`` gives :data:`DEFAULT_PALETTE`)."""
     if palette is None:
         return DEFAULT_PALETTE.copy()
-    colours = np.asarray(palette, dtype=float)
+    colours = float_array(palette, "palette", "an (n, 3) array of RGB colours")
     if colours.ndim != 2 or colours.shape[1] != 3 or colours.shape[0] < 1:
         raise ValueError(f"palette must be an (n, 3) array of RGB colours with n >= 1, got shape {colours.shape}")
     if not np.all(np.isfinite(colours)) or colours.min() < 0 or colours.max() > 1:
@@ -155,6 +156,8 @@ def _paint_labels(labels: np.ndarray, colours: np.ndarray, background: np.ndarra
 
 def _outputs(image, labels, geometry, return_labels: bool, return_geometry: bool):
     """The image alone, or a tuple with the labels and/or geometry that were asked for."""
+    return_labels = check_flag(return_labels, "return_labels")
+    return_geometry = check_flag(return_geometry, "return_geometry")
     extra = ([labels] if return_labels else []) + ([geometry] if return_geometry else [])
     return (image, *extra) if extra else image
 
@@ -221,7 +224,20 @@ def dead_leaves_mean_area(r_min, r_max, alpha=3.0) -> float:
 
 
 def dead_leaves_window_area(shape, r_max) -> float:
-    """Area A = (W + 2 r_max)(H + 2 r_max) of the enlarged window where :func:`dead_leaves` drops centres."""
+    """Area A = (W + 2 r_max)(H + 2 r_max) of the enlarged window where :func:`dead_leaves` drops centres.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Image shape (H, W) in pixels.
+    r_max : float
+        Largest leaf radius, pixels (> 0).
+
+    Returns
+    -------
+    float
+        ``(W + 2 r_max) (H + 2 r_max)``, square pixels.
+    """
     height, width = _check_shape(shape)
     r_max = positive_number(r_max, "r_max")
     return (width + 2.0 * r_max) * (height + 2.0 * r_max)
@@ -507,9 +523,14 @@ def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_label
     n_cells = _count(n_cells, "n_cells", 1)
     colours = _check_palette(palette)
     rng = as_generator(rng)
-    centres = np.column_stack([rng.uniform(0.0, width, n_cells), rng.uniform(0.0, height, n_cells)])
+    try:
+        centres = np.column_stack([rng.uniform(0.0, width, n_cells), rng.uniform(0.0, height, n_cells)])
+        pixels = _pixel_centres(height, width)
+    except (ValueError, MemoryError) as err:  # NumPy cannot allocate that many centres or pixels
+        raise ValueError(f"n_cells={n_cells:,} cells over shape={(height, width)} pixels are too many to allocate "
+                         f"({type(err).__name__}); ask for fewer") from None
     colour_index = rng.integers(len(colours), size=n_cells)
-    _, nearest = cKDTree(centres).query(_pixel_centres(height, width))
+    _, nearest = cKDTree(centres).query(pixels)
     labels = np.asarray(nearest, dtype=np.int64).reshape(height, width)
     image = _paint_labels(labels, colours[colour_index], np.zeros(3))
     return _outputs(image, labels, (centres, colour_index), return_labels, return_geometry)
@@ -629,6 +650,12 @@ def sierpinski_triangle(*, right_angled: bool = False) -> tuple[np.ndarray, np.n
     that box counting in the frame (0, 0, 1) finds N = 3^j). Both attractors have box-counting (and
     Hausdorff) dimension log 3 / log 2 = 1.585.
 
+    Parameters
+    ----------
+    right_angled : bool, default False
+        Use the right-angled gasket (vertices (0, 0), (1, 0), (0, 1)) instead of the
+        equilateral one.
+
     Returns
     -------
     linear : (3, 2, 2) ndarray
@@ -647,6 +674,15 @@ def barnsley_fern() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
     Returns ``(linear (4, 2, 2), offsets (4, 2), probabilities (4,))``; the attractor lies in about
     [-2.18, 2.66] x [0, 9.99] (y up). The stem map is singular (rank 1), still a contraction.
+
+    Returns
+    -------
+    linear : ndarray, shape (4, 2, 2)
+        Linear parts of the four maps.
+    offsets : ndarray, shape (4, 2)
+        Their translations.
+    probabilities : ndarray, shape (4,)
+        Their probabilities, (0.01, 0.85, 0.07, 0.07).
     """
     linear = np.array([
         [[0.00, 0.00], [0.00, 0.16]],
@@ -862,9 +898,7 @@ def box_counting_dimension(points, *, levels=(2, 7), frame=None) -> float:
     ----------
     Barnsley 1988, ch. V (box-counting theorem).
     """
-    pts = np.asarray(points, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
-        raise ValueError("points must be an (n, 2) array of finite points with n >= 2")
+    pts = point_array(points, "points", min_points=2)
     try:
         low_level, high_level = (_count(level, "levels", 0) for level in levels)
     except (TypeError, ValueError):

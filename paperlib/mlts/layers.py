@@ -69,6 +69,22 @@ def check_texels(texels) -> tuple[str, ...]:
     return kinds
 
 
+def checked_layers(layers, name: str = "layers") -> tuple:
+    """``layers`` as a tuple of :class:`Layer` (the paper's ``L_2``, ``L_3``...), or an error naming ``name``.
+
+    TypeError when ``layers`` is not a sequence; ValueError naming the first item that is not a Layer.
+    """
+    try:
+        layers = tuple(layers)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of paperlib.mlts.Layer, got {type(layers).__name__}") from None
+    for index, layer in enumerate(layers):
+        if not isinstance(layer, Layer):
+            raise ValueError(f"{name}[{index}] (layer {index + 2}) must be a paperlib.mlts.Layer, got "
+                             f"{type(layer).__name__}")
+    return layers
+
+
 def check_exact_keys(values, cls, what: str) -> None:
     """ValueError unless ``values`` is a mapping with exactly the fields of dataclass ``cls``."""
     if not isinstance(values, dict):
@@ -96,7 +112,34 @@ def _flag(value, name: str) -> bool:
 
 @dataclass(frozen=True)
 class Layer:
-    """Parameters of one layer ``L_m`` of an ML-texture (section 4); validated on creation."""
+    """Parameters of one layer ``L_m`` of an ML-texture (section 4); validated on creation.
+
+    Parameters
+    ----------
+    texels : str or tuple of str, default ("rectangle",)
+        ``T(L_m)``: the texel kinds the layer's objects are drawn from (of :data:`TEXELS`).
+    max_objects : int, default 10
+        ``Max_O(L_m)``: objects tried per father object (>= 1).
+    aspect_ratio : float, default 1
+        ``AspRat_O(L_m)``: length over width of every object (>= 1).
+    max_diameter : float, default 100
+        ``Max_D(L_m)``: object diameter before any reduction, pixels (> 0).
+    max_trials : int, default 20
+        ``Max_T(L_m)``: placements tried at one diameter (>= 1).
+    size_reduction : float, default 0.8
+        ``s_R(L_m)``: factor applied to the diameter after ``max_trials`` failures, in (0, 1).
+    max_reductions : int, default 5
+        ``Max_DR(L_m)``: diameter reductions before the object is given up (>= 0).
+    inclusion : bool, default False
+        ``Incl(L_m)``: every object lies inside its father, not touching it.
+    exclusion : bool, default False
+        ``Excl(L_m)``: objects of the layer do not intersect.
+    v0, v1 : tuple of 3 float, default (1, 0, 0) and (0, 1, 0)
+        ``V_0, V_1(L_m)``: the orientation points, projective ``(X, Y, Z)`` (not all zero).
+    vanishing : float, default 0
+        ``rF(L_m)``: size reduction toward a finite orientation point (>= 0; 0 for none, 1 for
+        linear perspective).
+    """
 
     texels: tuple = ("rectangle",)
     max_objects: int = 10
@@ -133,11 +176,28 @@ class Layer:
         set_(self, "vanishing", positive_number(self.vanishing, "vanishing (rF)", allow_zero=True))
 
     def to_dict(self) -> dict:
-        """Plain JSON-ready values (lists for tuples)."""
+        """Plain JSON-ready values (lists for tuples).
+
+        Returns
+        -------
+        dict
+            ``{field: value}`` for every field of the layer, tuples as lists.
+        """
         return {key: list(value) if isinstance(value, tuple) else value for key, value in asdict(self).items()}
 
     @classmethod
     def from_dict(cls, values: dict) -> "Layer":
-        """A layer from :meth:`to_dict`'s mapping; unknown or missing keys are errors."""
+        """A layer from :meth:`to_dict`'s mapping; unknown or missing keys are errors.
+
+        Parameters
+        ----------
+        values : dict
+            ``{field: value}`` with exactly the fields of :class:`Layer` (lists accepted for tuples).
+
+        Returns
+        -------
+        Layer
+            The validated layer.
+        """
         check_exact_keys(values, cls, "layer parameter")
         return cls(**{name: tuple(value) if isinstance(value, list) else value for name, value in values.items()})

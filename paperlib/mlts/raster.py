@@ -434,6 +434,8 @@ def paint(canvas, polygons, colors, *, alphas=None, lights=None, light_height=No
        5.2 (transparency), 5.3 (light spot), 5.4 (keep father inclusion).
     """
     _check_canvas(canvas)
+    if isinstance(polygons, (str, bytes)) or not hasattr(polygons, "__iter__"):
+        raise TypeError(f"polygons must be a sequence of (k, 2) vertex arrays, got {type(polygons).__name__}")
     shapes = [check_polygon(p, f"polygons[{i}]") for i, p in enumerate(polygons)]
     n = len(shapes)
     color_array = _check_colors(colors, n)

@@ -63,6 +63,11 @@ def load_palette(source) -> np.ndarray:
         A local image file is passed explicitly as a :class:`pathlib.Path` (any ``os.PathLike``);
         an (h, w, 3) / (n, 3) array is used as it is.
 
+    Returns
+    -------
+    ndarray of float, shape (n, 3)
+        The RGB colours of the image's pixels (or the array's rows), in [0, 1].
+
     Raises
     ------
     ValueError

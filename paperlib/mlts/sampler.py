@@ -67,7 +67,7 @@ import shapely
 from shapely.geometry import Polygon
 
 from .._checks import as_generator, budget, check_budget
-from .layers import Layer
+from .layers import Layer, checked_layers
 from .raster import coverage
 from .texels import affine_map, distances_to, orientation_angles, texel_batch
 
@@ -93,7 +93,7 @@ ROUND_TRIALS = 32768
 class MLObject:
     """One object ``O_{m,k}`` of an ML-texture.
 
-    Attributes
+    Parameters
     ----------
     layer : int
         Layer index, 0 for the image rectangle (the paper's ``L_1``).
@@ -127,7 +127,7 @@ class MLObject:
 class Structure:
     """The multi-layered object structure of an ML-texture (Definition 1).
 
-    Attributes
+    Parameters
     ----------
     width, height : int
         Image size, pixels.
@@ -156,7 +156,18 @@ class Structure:
     order: str = "rounds"
 
     def layer_objects(self, layer: int) -> list:
-        """The objects of layer ``layer`` (0 = the image rectangle)."""
+        """The objects of layer ``layer`` (0 = the image rectangle).
+
+        Parameters
+        ----------
+        layer : int
+            Layer index: 0 for the image rectangle, m - 1 for the paper's ``L_m``.
+
+        Returns
+        -------
+        list of MLObject
+            Its objects, in insertion order.
+        """
         return [item for item in self.objects if item.layer == layer]
 
 
@@ -167,14 +178,6 @@ def _image_size(value, name: str) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
         raise ValueError(f"{name} must be a positive integer number of pixels, got {value!r}")
     return int(value)
-
-
-def _checked_layers(layers) -> tuple:
-    layers = tuple(layers)
-    for index, layer in enumerate(layers):
-        if not isinstance(layer, Layer):
-            raise ValueError(f"layer {index + 2} must be a paperlib.mlts.Layer, got {type(layer).__name__}")
-    return layers
 
 
 # ---------------------------------------------------------------------------- slots and candidates
@@ -610,7 +613,7 @@ def sample_structure(layers, width: int, height: int, seed=None, *, max_trials: 
     object spatial organization) and 4 (layer parameters, Implementation), Figs. 13-14.
     """
     width, height = _image_size(width, "width"), _image_size(height, "height")
-    layers = _checked_layers(layers)
+    layers = checked_layers(layers)
     rng = as_generator(seed, "seed")
     max_trials = budget(max_trials, "max_trials")
     if not isinstance(order, str) or order not in ORDERS:
@@ -652,6 +655,11 @@ def rule_violations(structure: Structure) -> dict:
     zero): for every layer whose ``Excl`` is on, the number of intersecting pairs of its objects
     (shapely STRtree query, predicate ``intersects``); for every layer whose ``Incl`` is on, the
     number of objects not properly contained in their father (``contains_properly``).
+
+    Parameters
+    ----------
+    structure : Structure
+        A sampled structure (:func:`sample_structure`).
 
     Returns
     -------

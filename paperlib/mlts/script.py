@@ -23,7 +23,7 @@ from pathlib import Path
 
 from .._atomic import atomic_path
 from .._checks import as_generator, load_json, positive_number
-from .layers import Layer, check_exact_keys
+from .layers import Layer, check_exact_keys, checked_layers
 from ..datasets import photograph_names
 from .texels import TEXELS
 
@@ -67,7 +67,7 @@ def _seed(value, name: str) -> int:
 class RenderSettings:
     """Rendering parameters of section 5.4 (besides the image size, which the script holds).
 
-    Attributes
+    Parameters
     ----------
     palette : str
         The palette image (5.1): a bundled scikit-image photograph name
@@ -121,7 +121,7 @@ class RenderSettings:
 class Script:
     """Everything that determines an ML-texture image (sections 4 and 5.4).
 
-    Attributes
+    Parameters
     ----------
     width, height : int
         Image size in pixels.
@@ -140,15 +140,11 @@ class Script:
 
     def __post_init__(self):
         for name in ("width", "height"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 16384:
-                raise ValueError(f"{name} must be an integer number of pixels in [1, 16384], got {value!r}")
+            _pixels(getattr(self, name), name)
         _seed(self.seed, "seed")
-        layers = tuple(self.layers)
+        layers = checked_layers(self.layers)
         if not layers:
-            raise ValueError("a script needs at least one layer besides the image rectangle (N_L >= 2)")
-        if not all(isinstance(layer, Layer) for layer in layers):
-            raise ValueError("layers must be paperlib.mlts.Layer objects")
+            raise ValueError("layers: a script needs at least one layer besides the image rectangle (N_L >= 2)")
         object.__setattr__(self, "layers", layers)
         if not isinstance(self.render, RenderSettings):
             raise ValueError(f"render must be RenderSettings, got {type(self.render).__name__}")
@@ -156,6 +152,14 @@ class Script:
     # ------------------------------------------------------------------ JSON
 
     def to_dict(self) -> dict:
+        """The script as plain JSON-ready values, with the format's version.
+
+        Returns
+        -------
+        dict
+            ``version``, ``width``, ``height``, ``seed``, ``layers`` (a list of
+            :meth:`Layer.to_dict` mappings) and ``render`` (the :class:`RenderSettings` fields).
+        """
         return {
             "version": SCRIPT_VERSION,
             "width": self.width,
@@ -166,11 +170,30 @@ class Script:
         }
 
     def to_json(self) -> str:
+        """The script as JSON text (:meth:`to_dict`, indented by one space).
+
+        Returns
+        -------
+        str
+            The JSON text, readable by :meth:`from_json`.
+        """
         return json.dumps(self.to_dict(), indent=1)
 
     @classmethod
     def from_dict(cls, values) -> "Script":
-        """A script from :meth:`to_dict`'s mapping; unknown, missing or bad keys raise ValueError."""
+        """A script from :meth:`to_dict`'s mapping; unknown, missing or bad keys raise ValueError.
+
+        Parameters
+        ----------
+        values : dict
+            A mapping as :meth:`to_dict` gives: ``version`` equal to the current script version, and
+            exactly the keys ``width``, ``height``, ``seed``, ``layers``, ``render``.
+
+        Returns
+        -------
+        Script
+            The validated script.
+        """
         if not isinstance(values, dict):
             raise ValueError(f"a script must be a JSON object, got {type(values).__name__}")
         values = dict(values)
@@ -186,11 +209,33 @@ class Script:
 
     @classmethod
     def from_json(cls, text: str) -> "Script":
-        """A script from JSON text; bad syntax, nesting too deep and bad keys raise ValueError."""
+        """A script from JSON text; bad syntax, nesting too deep and bad keys raise ValueError.
+
+        Parameters
+        ----------
+        text : str
+            JSON text of a :meth:`to_dict` mapping.
+
+        Returns
+        -------
+        Script
+            The validated script.
+        """
         return cls.from_dict(load_json(text, "a JSON script"))
 
     def save(self, path) -> Path:
-        """Write the script as JSON (atomically: no half-written file)."""
+        """Write the script as JSON (atomically: no half-written file).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write (missing folders are created).
+
+        Returns
+        -------
+        pathlib.Path
+            ``path``, as written.
+        """
         path = Path(path)
         with atomic_path(path) as temporary:
             temporary.write_text(self.to_json() + "\n")
@@ -198,6 +243,23 @@ class Script:
 
     @classmethod
     def load(cls, path) -> "Script":
+        """Read a script written by :meth:`save`.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The JSON file.
+
+        Returns
+        -------
+        Script
+            The validated script.
+
+        Raises
+        ------
+        ValueError
+            When the file cannot be read, or its JSON is not a valid script.
+        """
         try:
             text = Path(path).read_text()
         except OSError as exc:
@@ -253,6 +315,13 @@ def _random_layer(rng, diameter: float, max_objects: int, width: int, height: in
     )
 
 
+def _pixels(value, name: str) -> int:
+    """``value`` unchanged if it is an int in [1, 16384] (an image side in pixels), else a ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 16384:
+        raise ValueError(f"{name} must be an integer number of pixels in [1, 16384], got {value!r:.80}")
+    return value
+
+
 def sample_script(rng=None, *, width: int = 512, height: int = 512, palette: str = "chelsea") -> Script:
     """A random script: every hyper-parameter drawn uniformly in its range (section 4, automatic mode).
 
@@ -288,6 +357,7 @@ def sample_script(rng=None, *, width: int = 512, height: int = 512, palette: str
     sampling rate, and our perception accuracy") and 5.4 (rendering parameters).
     """
     rng = as_generator(rng)
+    width, height = _pixels(width, "width"), _pixels(height, "height")
     short = min(width, height)
     n_layers = _integer(rng, LAYER_COUNT_RANGE) - 1
     layers, diameter = [], _uniform(rng, DIAMETER_RANGE) * short

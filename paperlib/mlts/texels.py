@@ -42,7 +42,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 from scipy.spatial.distance import pdist
 
-from .._checks import as_generator, positive_number
+from .._checks import as_generator, check_choice, float_array, positive_number
 
 __all__ = [
     "TEXELS",
@@ -158,6 +158,17 @@ def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = Non
     Each is distributed as :func:`texel` describes; drawing them in one call vectorises the
     random draws and the square-box normalisation over texels of equal vertex count.
 
+    Parameters
+    ----------
+    kind : str
+        One of :data:`TEXELS` (see :func:`texel`).
+    count : int
+        Number of texels (>= 0).
+    rng : None, int or numpy.random.Generator
+        Source of randomness; the same seed gives the same texels bit for bit.
+    n_vertices : int, optional
+        Vertex count where the kind allows it (see :func:`texel`).
+
     Returns
     -------
     list of numpy.ndarray, each (k, 2)
@@ -168,8 +179,7 @@ def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = Non
     ValueError
         Unknown ``kind``, a vertex count the kind does not accept, or a negative ``count``.
     """
-    if kind not in TEXELS:
-        raise ValueError(f"unknown texel kind {kind!r}; choose among {TEXELS}")
+    check_choice(kind, TEXELS, "kind")
     n_vertices = _vertex_count(kind, n_vertices)
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
         raise ValueError(f"count must be a non-negative integer, got {count!r}")
@@ -538,7 +548,7 @@ def affine_objects(vertices_list, centers, diameters, aspects, angles) -> list[n
 
 
 def _per_object(values, n_objects: int, name: str) -> np.ndarray:
-    array = np.asarray(values, dtype=np.float64)
+    array = float_array(values, name, f"{n_objects} numbers, one per object")
     if array.shape != (n_objects,):
         raise ValueError(f"{name} must have shape ({n_objects},) like centers, got {array.shape}")
     if not np.all(np.isfinite(array)):

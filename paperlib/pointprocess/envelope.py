@@ -23,6 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
+from paperlib._checks import check_choice
 from paperlib.parallel import run_many
 
 from .models import MultiStraussHard
@@ -186,8 +187,7 @@ def envelope(
         simulations); ``attrs`` hold ``nsim``, ``nrank``, ``kind``, ``column`` and the
         significance level ``alpha``.
     """
-    if kind not in _KINDS:
-        raise ValueError(f"kind must be one of {_KINDS}, got {kind!r}")
+    check_choice(kind, _KINDS, "kind")
     nsim = _checked_nsim(nsim, None)
     if isinstance(nrank, bool) or not isinstance(nrank, (int, np.integer)) or nrank < 1:
         raise ValueError(f"nrank must be a positive integer, got {nrank!r}")

@@ -92,7 +92,8 @@ import numpy as np
 import pandas as pd
 from scipy.spatial import cKDTree
 
-from paperlib._checks import check_flag, finite_array, instance_of, integer_at_least, positive_number
+from paperlib._checks import (check_choice, check_flag, finite_array, float_array, instance_of, integer_at_least,
+                              positive_number, real_number)
 
 from .models import MultiStraussHard, interaction_counts, interaction_pairs
 from .pattern import PointPattern, require_distinct
@@ -157,9 +158,7 @@ def _check_pattern(pattern) -> PointPattern:
 
 
 def _check_choice(value, choices, name: str) -> str:
-    if value not in choices:
-        raise ValueError(f"{name} must be one of {choices}, got {value!r}")
-    return value
+    return check_choice(value, choices, name)
 
 
 def _interaction(pattern: PointPattern, r, hc, closed: bool) -> MultiStraussHard:
@@ -254,7 +253,7 @@ def _minimum_distances(pattern: PointPattern) -> np.ndarray:
 class RadiusSelection:
     """Interaction radii chosen from centered L functions (Hurtut 2009, section 3.2.2).
 
-    Attributes
+    Parameters
     ----------
     r : ndarray, shape (n_types, n_types)
         The chosen radii (symmetric).
@@ -310,9 +309,11 @@ def select_radius(r, L, hardcore: float, rebound_height: float) -> tuple[float, 
     ----------
     Hurtut et al. (2009), section 3.2.2.
     """
-    r, L = np.asarray(r, dtype=np.float64), np.asarray(L, dtype=np.float64)
+    r, L = float_array(r, "r"), float_array(L, "L")
     if r.shape != L.shape or r.ndim != 1:
         raise ValueError(f"r and L must be 1-D arrays of one length, got shapes {r.shape} and {L.shape}")
+    hardcore = real_number(hardcore, "hardcore")
+    rebound_height = real_number(rebound_height, "rebound_height", "a number >= 0")
     if not rebound_height >= 0:
         raise ValueError(f"rebound_height must be >= 0, got {rebound_height}")
     usable = (r > hardcore) & np.isfinite(L)
@@ -335,6 +336,20 @@ def csr_L_sd(area: float, n_a: int, n_b: int, same_type: bool) -> float:
     Poisson count of mean n^2 pi r^2 / (2|W|), so Var K = 2 pi r^2 |W| / n^2; across types,
     Var K = pi r^2 |W| / (n_a n_b). By the delta method (dL/dK = 1 / (2 pi r) at K = pi r^2),
     Var L = |W| / (2 pi n^2) and |W| / (4 pi n_a n_b): constant in r (edge effects ignored).
+
+    Parameters
+    ----------
+    area : float
+        Area |W| of the window (> 0).
+    n_a, n_b : int
+        Number of points of the two types (>= 1); equal for one type.
+    same_type : bool
+        Whether L is the single-type L (True) or the cross-type L between two types (False).
+
+    Returns
+    -------
+    float
+        ``sqrt(|W| / (2 pi n_a n_b))`` for one type, ``sqrt(|W| / (4 pi n_a n_b))`` across types.
     """
     area = positive_number(area, "area")
     n_a, n_b, same_type = integer_at_least(n_a, "n_a", 1), integer_at_least(n_b, "n_b", 1), check_flag(same_type, "same_type")
@@ -393,10 +408,10 @@ def interaction_radii(pattern: PointPattern, hardcore, *, correction: str = "iso
     pattern = _check_pattern(pattern)
     _check_choice(correction, tuple(L_COLUMNS), "correction")
     m = pattern.n_types
-    hardcore = np.asarray(hardcore, dtype=np.float64)
+    hardcore = float_array(hardcore, "hardcore", f"a {m}x{m} matrix (one per category pair)")
     if hardcore.shape != (m, m):
         raise ValueError(f"hardcore must be a {m}x{m} matrix (one per category pair), got shape {hardcore.shape}")
-    if not rebound >= 0:
+    if not real_number(rebound, "rebound", "a number >= 0") >= 0:
         raise ValueError(f"rebound must be >= 0, got {rebound}")
     radii = np.zeros((m, m))
     rows, curves = [], {}
@@ -439,7 +454,7 @@ def _pairs(m: int) -> list[tuple[int, int]]:
 class PPMFit:
     """A multitype Strauss hard-core model fitted by maximum pseudolikelihood.
 
-    Attributes
+    Parameters
     ----------
     model : MultiStraussHard
         The fitted model (beta, gamma, with the r and hc it was fitted for).
@@ -1042,7 +1057,7 @@ def _natural_quantities(model: MultiStraussHard):
 class StraussHardcoreFit:
     """Hurtut's estimation of a multitype Strauss hard-core model (section 3.2).
 
-    Attributes
+    Parameters
     ----------
     fit : PPMFit
         The pseudolikelihood fit of beta and gamma (step 3).

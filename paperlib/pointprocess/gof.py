@@ -64,7 +64,7 @@ LEAVEOUT = (0, 1, 2)
 class GlobalTest:
     """The result of a global Monte Carlo test (spatstat's ``htest`` from ``envelopeTest``).
 
-    Attributes
+    Parameters
     ----------
     test : str
         ``"DCLF"`` or ``"MAD"``.

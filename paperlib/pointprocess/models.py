@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from paperlib._checks import finite_array, instance_of, integer_array
+from paperlib._checks import check_flag, finite_array, float_array, instance_of, integer_array
 
 __all__ = ["MultiStraussHard", "PairDistance", "Poisson", "Strauss", "StraussHard", "interaction_counts",
            "interaction_pairs"]
@@ -35,7 +35,7 @@ __all__ = ["MultiStraussHard", "PairDistance", "Poisson", "Strauss", "StraussHar
 
 def _square(values, m: int, name: str, *, positive: bool = False) -> np.ndarray:
     """A symmetric ``(m, m)`` float array from a scalar or a matrix, validated."""
-    array = np.array(values, dtype=np.float64)
+    array = np.array(float_array(values, name, f"a number or a {m}x{m} matrix of numbers"))
     if array.ndim == 0:
         array = np.full((m, m), float(array))
     if array.shape != (m, m):
@@ -81,7 +81,7 @@ class MultiStraussHard:
     closed: bool = False
 
     def __post_init__(self):
-        beta = np.array(self.beta, dtype=np.float64).reshape(-1)
+        beta = np.array(float_array(self.beta, "beta", "positive numbers, one per type")).reshape(-1)
         if beta.size == 0 or not np.isfinite(beta).all() or (beta <= 0).any():
             raise ValueError(f"beta must be positive and finite, one per type, got {self.beta!r}")
         beta.setflags(write=False)
@@ -98,7 +98,7 @@ class MultiStraussHard:
             raise ValueError(f"categories must be {m} distinct names, got {categories}")
         for name, value in (("beta", beta), ("gamma", gamma), ("r", r), ("hc", hc), ("categories", categories)):
             object.__setattr__(self, name, value)
-        object.__setattr__(self, "closed", bool(self.closed))
+        object.__setattr__(self, "closed", check_flag(self.closed, "closed"))
 
     @property
     def n_types(self) -> int:
@@ -127,6 +127,13 @@ class MultiStraussHard:
         exclude : array_like of int, shape (k,), optional
             Index in the pattern of a point to leave out for each location (-1: none):
             lambda(x_i; x minus x_i) at data point i needs ``exclude[i] = i``.
+
+        Returns
+        -------
+        ndarray of float64, shape (k,)
+            log lambda(u_i, m_i; x) = log beta_{m_i} + sum_t c_{it} log gamma_{m_i t}, with c_{it} the
+            number of pattern points of type t in the Strauss shell of location i; ``-inf`` where a
+            pattern point lies in the hard core or a gamma of 0 meets a neighbour.
         """
         types = np.asarray(types, dtype=np.int64)
         counts, forbidden = interaction_counts(self, locations, types, pattern_points, pattern_marks, exclude)
@@ -218,7 +225,7 @@ def _flat_points(values, name: str) -> np.ndarray:
 class PairDistance:
     """A distance between the objects carried by points, for the interactions of a model.
 
-    Attributes
+    Parameters
     ----------
     distance : callable
         ``distance(i, j) -> d``: distances between the objects at locations ``i`` and at
@@ -259,6 +266,24 @@ def interaction_counts(model, locations, types, pattern_points, pattern_marks, e
 
     Parameters are those of :func:`interaction_pairs`.
 
+    Parameters
+    ----------
+    model : MultiStraussHard
+        The model whose shells and hard cores are applied.
+    locations : array_like, shape (k, 2)
+        Locations u_i.
+    types : array_like of int, shape (k,)
+        Type proposed at each location.
+    pattern_points : array_like, shape (n, 2)
+        The configuration x.
+    pattern_marks : array_like of int, shape (n,)
+        Type of each pattern point.
+    exclude : array_like of int, shape (k,), optional
+        Pattern index to leave out for each location (-1: none).
+    pair_distance : PairDistance, optional
+        Distances between the objects at the points, used instead of the distances between
+        the points (see :func:`interaction_pairs`).
+
     Returns
     -------
     counts : ndarray, shape (k, M)
@@ -277,16 +302,65 @@ def interaction_counts(model, locations, types, pattern_points, pattern_marks, e
 
 
 def Poisson(beta, categories=None) -> MultiStraussHard:
-    """Poisson process (no interaction) with intensity ``beta`` per type."""
-    beta = np.array(beta, dtype=np.float64).reshape(-1)
+    """Poisson process (no interaction) with intensity ``beta`` per type.
+
+    Parameters
+    ----------
+    beta : array_like, shape (M,)
+        Intensity of each type (positive, finite).
+    categories : sequence, optional
+        Names of the M types.
+
+    Returns
+    -------
+    MultiStraussHard
+        The model with ``gamma = 1`` (and ``hc = 0``): no interaction.
+    """
     return MultiStraussHard(beta, gamma=1.0, r=1.0, hc=0.0, categories=categories)
 
 
 def Strauss(beta, gamma, r, *, closed=True) -> MultiStraussHard:
-    """Strauss process (spatstat ``Strauss(r)``): pairs closer than r weigh ``gamma``."""
+    """Strauss process (spatstat ``Strauss(r)``): pairs closer than r weigh ``gamma``.
+
+    Parameters
+    ----------
+    beta : float
+        Intensity parameter (> 0).
+    gamma : float
+        Interaction parameter, in ``[0, 1]`` for a valid (inhibitory) process.
+    r : float
+        Interaction distance (> 0).
+    closed : bool, default True
+        Count pairs with ``d <= r``, as spatstat's Strauss does (``d < r`` when False).
+
+    Returns
+    -------
+    MultiStraussHard
+        The single-type model with ``hc = 0``.
+    """
     return MultiStraussHard([beta], gamma=gamma, r=r, hc=0.0, closed=closed)
 
 
 def StraussHard(beta, gamma, r, hc, *, closed=True) -> MultiStraussHard:
-    """Strauss hard-core process (spatstat ``StraussHard(r, hc)``)."""
+    """Strauss hard-core process (spatstat ``StraussHard(r, hc)``).
+
+    Parameters
+    ----------
+    beta : float
+        Intensity parameter (> 0).
+    gamma : float
+        Interaction parameter for pairs in the shell ``hc .. r``.
+    r : float
+        Interaction distance (> 0).
+    hc : float
+        Hard-core distance, ``0 <= hc <= r``.
+    closed : bool, default True
+        Count pairs with ``d <= r`` and forbid ``d <= hc``, as spatstat's StraussHard does
+        (``d < r`` and ``d < hc`` when False).
+
+    Returns
+    -------
+    MultiStraussHard
+        The single-type model.
+    """
     return MultiStraussHard([beta], gamma=gamma, r=r, hc=hc, closed=closed)

@@ -103,22 +103,57 @@ class PointPattern:
         """Points per unit area, all types together (spatstat's ``intensity``)."""
         return self.n / self.window.area
 
-    def type_index(self, category) -> int:
-        """Index of a category given by name or index."""
+    def type_index(self, category, name: str = "category") -> int:
+        """Index of a category given by name or index (``name``: the caller's parameter, for messages).
+
+        Parameters
+        ----------
+        category : int or str
+            A type index in ``0 .. n_types - 1``, or a category name (an entry of ``categories``).
+        name : str, default "category"
+            The caller's name for ``category``, that error messages start with.
+
+        Returns
+        -------
+        int
+            The type index.
+
+        Raises
+        ------
+        ValueError
+            For an index out of range or an unknown name.
+        """
         if isinstance(category, (int, np.integer)) and not isinstance(category, bool):
             if not 0 <= category < self.n_types:
-                raise ValueError(f"type index {category} out of range 0..{self.n_types - 1}")
+                raise ValueError(f"{name}: type index {category} out of range 0..{self.n_types - 1}")
             return int(category)
-        if category not in self.categories:
-            raise ValueError(f"unknown category {category!r}; categories: {list(self.categories)}")
+        if not isinstance(category, str) or category not in self.categories:
+            raise ValueError(f"{name}: unknown category {category!r:.80}; categories: {list(self.categories)}")
         return self.categories.index(category)
 
     def of_type(self, category) -> np.ndarray:
-        """Coordinates of the points of one category (name or index)."""
+        """Coordinates of the points of one category (name or index).
+
+        Parameters
+        ----------
+        category : int or str
+            A type index or a category name (see :meth:`type_index`).
+
+        Returns
+        -------
+        ndarray of float64, shape (k, 2)
+            The coordinates of the points of that category, in the pattern's order.
+        """
         return self.points[self.marks == self.type_index(category)]
 
     def unmark(self) -> "PointPattern":
-        """The same points as an unmarked (single-type) pattern."""
+        """The same points as an unmarked (single-type) pattern.
+
+        Returns
+        -------
+        PointPattern
+            The points in the same window, all of a single type.
+        """
         return PointPattern(self.points, self.window)
 
     def duplicated(self, rule: str = "spatstat") -> np.ndarray:
@@ -138,7 +173,20 @@ class PointPattern:
         return self._first_copies(rule) != np.arange(self.n)
 
     def unique(self, rule: str = "spatstat") -> "PointPattern":
-        """The pattern without its repeated points (spatstat's ``unique.ppp``); see :meth:`duplicated`."""
+        """The pattern without its repeated points (spatstat's ``unique.ppp``); see :meth:`duplicated`.
+
+        Parameters
+        ----------
+        rule : {"spatstat", "unmark"}
+            ``"spatstat"``: a repeat has the same location and the same mark; ``"unmark"``: the
+            same location, whatever the marks.
+
+        Returns
+        -------
+        PointPattern
+            The first point at each location (and mark), in the pattern's order, with their marks,
+            the same window and categories.
+        """
         keep = ~self.duplicated(rule)
         return PointPattern(self.points[keep], self.window, self.marks[keep], self.categories)
 

@@ -72,6 +72,24 @@ def rMatClust(kappa: float, scale: float, mu: float, window: Window, *, rng=None
     Poisson(``mu``) number of children uniform in the disc of radius ``scale`` around
     it; children outside the window are dropped. Intensity: ``kappa * mu``.
 
+    Parameters
+    ----------
+    kappa : float
+        Intensity of the parents (> 0), points per unit area.
+    scale : float
+        Radius of the clusters' discs (> 0).
+    mu : float
+        Mean number of children per parent (> 0).
+    window : Window
+        The observation window.
+    rng : None, int or numpy.random.Generator, optional
+        Source of randomness.
+
+    Returns
+    -------
+    PointPattern
+        The children inside ``window`` (an unmarked pattern, repeated points dropped).
+
     References
     ----------
     Matérn, B. (1960). Spatial variation. spatstat's ``rMatClust``.

@@ -64,7 +64,7 @@ class QuadratureScheme:
     The first ``n_data`` points are the data points, in the pattern's order; then the dummy
     points (grid points, type by type, then the copies of data points with other types).
 
-    Attributes
+    Parameters
     ----------
     points : ndarray, shape (k, 2)
     types : ndarray of int, shape (k,)
@@ -109,7 +109,18 @@ class QuadratureScheme:
 
 
 def default_nd(n_points: int) -> int:
-    """spatstat's default dummy grid side: ``max(32, 10 * ceil(2 sqrt(n) / 10))``."""
+    """spatstat's default dummy grid side: ``max(32, 10 * ceil(2 sqrt(n) / 10))``.
+
+    Parameters
+    ----------
+    n_points : int
+        Number of data points (>= 0).
+
+    Returns
+    -------
+    int
+        The side of the dummy grid, at least 32.
+    """
     n_points = integer_at_least(n_points, "n_points", 0)
     return max(SPATSTAT_MIN_ND, 10 * math.ceil(2 * math.sqrt(n_points) / 10))
 

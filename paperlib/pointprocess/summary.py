@@ -281,7 +281,7 @@ def Kcross(pattern: PointPattern, i, j, r=None, *, correction=("border", "isotro
     """
     pattern = _checked_pattern(pattern)
     corrections = _parsed_corrections(correction, K_CORRECTIONS)
-    type_i, type_j = pattern.type_index(i), pattern.type_index(j)
+    type_i, type_j = pattern.type_index(i, "i"), pattern.type_index(j, "j")
     first = pattern.points[pattern.marks == type_i]
     if type_i == type_j:
         _require_points(len(first), 2, f"Kcross({i!r}, {j!r}) needs at least 2 points of type {i!r}")

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from paperlib._checks import check_choice
 from paperlib.geometry import as_points
 
 __all__ = ["Window"]
@@ -35,21 +36,35 @@ class Window:
 
     Build one with :meth:`rectangle`, :meth:`polygon` or :meth:`mask`.
 
-    Attributes
+    Parameters
     ----------
     kind : {"rectangle", "polygon", "mask"}
+        The kind of window.
     xrange, yrange : tuple of float
         The bounding box (the frame, in spatstat's words).
     area : float
+        The window's area (> 0).
+    polygon : shapely.Polygon or shapely.MultiPolygon, optional
+        The region, for ``kind="polygon"``.
+    mask : ndarray of bool, optional
+        The admissible pixels, for ``kind="mask"``.
+
+    Attributes
+    ----------
+    kind : {"rectangle", "polygon", "mask"}
+        The kind of window.
+    xrange, yrange : tuple of float
+        The bounding box.
+    area : float
+        The window's area.
     """
 
     __slots__ = ("kind", "xrange", "yrange", "area", "_polygon", "_mask", "_boundary_distance")
 
     def __init__(self, kind, xrange, yrange, area, polygon=None, mask=None):
-        if kind not in _KINDS:
-            raise ValueError(f"window kind must be one of {_KINDS}, got {kind!r}")
-        if not area > 0:
-            raise ValueError(f"a window must have positive area, got {area}")
+        check_choice(kind, _KINDS, "kind")
+        if not isinstance(area, (int, float, np.integer, np.floating)) or isinstance(area, bool) or not area > 0:
+            raise ValueError(f"area: a window must have positive area, got {area!r:.80}")
         self.kind, self.xrange, self.yrange, self.area = kind, xrange, yrange, float(area)
         self._polygon, self._mask, self._boundary_distance = polygon, mask, None
 
@@ -57,13 +72,36 @@ class Window:
 
     @classmethod
     def rectangle(cls, xrange=(0.0, 1.0), yrange=(0.0, 1.0)) -> "Window":
-        """The rectangle ``xrange x yrange`` (spatstat ``owin(xrange, yrange)``)."""
+        """The rectangle ``xrange x yrange`` (spatstat ``owin(xrange, yrange)``).
+
+        Parameters
+        ----------
+        xrange, yrange : (float, float), default (0, 1)
+            The x and y extents, finite, ``low < high``.
+
+        Returns
+        -------
+        Window
+            The rectangle window.
+        """
         xrange, yrange = _check_range(xrange, "xrange"), _check_range(yrange, "yrange")
         return cls("rectangle", xrange, yrange, (xrange[1] - xrange[0]) * (yrange[1] - yrange[0]))
 
     @classmethod
     def polygon(cls, shape) -> "Window":
-        """A polygon window from a shapely (Multi)Polygon or an ``(n, 2)`` vertex array."""
+        """A polygon window from a shapely (Multi)Polygon or an ``(n, 2)`` vertex array.
+
+        Parameters
+        ----------
+        shape : shapely.Polygon, shapely.MultiPolygon or array_like, shape (n, 2)
+            The region (holes allowed), or the vertices of a simple polygon (n >= 3); it must be
+            valid and of positive area.
+
+        Returns
+        -------
+        Window
+            The polygon window, with its bounding box as frame.
+        """
         import shapely
         from shapely.geometry import MultiPolygon, Polygon
 
@@ -79,7 +117,20 @@ class Window:
 
     @classmethod
     def mask(cls, mask, xrange=(0.0, 1.0), yrange=(0.0, 1.0)) -> "Window":
-        """A binary-mask window; ``mask[i, j]`` is True for admissible pixels (row 0 at the bottom)."""
+        """A binary-mask window; ``mask[i, j]`` is True for admissible pixels (row 0 at the bottom).
+
+        Parameters
+        ----------
+        mask : array_like of bool or 0/1, shape (rows, cols)
+            The admissible pixels (at least one), row 0 at the bottom.
+        xrange, yrange : (float, float), default (0, 1)
+            The frame the pixels tile.
+
+        Returns
+        -------
+        Window
+            The mask window; its area is the admissible pixels' area.
+        """
         mask = np.array(mask)
         if mask.ndim != 2 or min(mask.shape) < 1:
             raise ValueError(f"mask must be a non-empty 2-D array, got shape {mask.shape}")
@@ -152,7 +203,18 @@ class Window:
         return rows, cols
 
     def contains(self, points) -> np.ndarray:
-        """Boolean array: which of the ``(n, 2)`` points lie in the window (boundary included)."""
+        """Boolean array: which of the ``(n, 2)`` points lie in the window (boundary included).
+
+        Parameters
+        ----------
+        points : array_like, shape (n, 2)
+            Point coordinates.
+
+        Returns
+        -------
+        ndarray of bool, shape (n,)
+            True for the points in the window, boundary included.
+        """
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         x, y = points[:, 0], points[:, 1]
         in_frame = (x >= self.xrange[0]) & (x <= self.xrange[1]) & (y >= self.yrange[0]) & (y <= self.yrange[1])
@@ -170,6 +232,16 @@ class Window:
 
         Exact for rectangles and polygons; for masks, the Euclidean distance transform
         of the mask at pixel resolution (pixel centres), so accurate to about one pixel.
+
+        Parameters
+        ----------
+        points : array_like, shape (n, 2)
+            Points inside the window.
+
+        Returns
+        -------
+        ndarray of float64, shape (n,)
+            Distance from each point to the window's boundary, in the window's units.
         """
         points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         if self.kind == "rectangle":
@@ -192,7 +264,20 @@ class Window:
         return np.maximum(self._boundary_distance[rows, cols], 0.0)
 
     def uniform_points(self, n: int, rng=None) -> np.ndarray:
-        """``n`` independent uniform points in the window (rejection from the frame)."""
+        """``n`` independent uniform points in the window (rejection from the frame).
+
+        Parameters
+        ----------
+        n : int
+            Number of points (>= 0).
+        rng : None, int or numpy.random.Generator, optional
+            Source of randomness.
+
+        Returns
+        -------
+        ndarray of float64, shape (n, 2)
+            The points, independent and uniform in the window.
+        """
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
             raise ValueError(f"n must be a non-negative integer, got {n!r}")
         rng = np.random.default_rng(rng)

@@ -25,7 +25,8 @@ import numpy as np
 import shapely
 from scipy.ndimage import convolve1d
 
-from .._checks import check_budget, check_flag, finite_array, integer_at_least, point_array, positive_number
+from .._checks import (check_budget, check_flag, finite_array, integer_at_least, label, point_array,
+                       positive_number)
 from ..geometry import as_points, resample_closed_curve, resample_open_curve
 
 __all__ = [
@@ -56,6 +57,16 @@ MAX_FILTER_WIDTH = 2**16 + 1
 def wrap_angle(angle):
     """Angles wrapped to ``[-pi, pi)``: the signed difference of two directions.
 
+    Parameters
+    ----------
+    angle : float or array_like
+        Angles in radians (finite).
+
+    Returns
+    -------
+    float64 or ndarray of float64
+        The angles wrapped to ``[-pi, pi)``, the shape of ``angle``.
+
     Raises
     ------
     ValueError
@@ -81,6 +92,8 @@ def check_curve(points, *, closed: bool, min_points: int = 3, name: str = "curve
         Whether the last vertex joins the first.
     min_points : int
         The fewest vertices accepted.
+    name : str, default "curve"
+        How error messages name the curve.
 
     Returns
     -------
@@ -92,6 +105,9 @@ def check_curve(points, *, closed: bool, min_points: int = 3, name: str = "curve
         On NaN or infinite coordinates, fewer than ``min_points`` vertices, two consecutive equal vertices
         (a zero-length segment, whose tangent is undefined), or a curve that crosses itself.
     """
+    name = label(name)
+    closed = check_flag(closed, "closed")
+    min_points = integer_at_least(min_points, "min_points", 0)
     points = np.array(as_points(points, name=name, min_points=2))
     if closed and len(points) > 2 and np.array_equal(points[0], points[-1]):
         points = points[:-1]
@@ -100,15 +116,31 @@ def check_curve(points, *, closed: bool, min_points: int = 3, name: str = "curve
     following = np.roll(points, -1, axis=0) if closed else points[1:]
     repeated = np.flatnonzero(np.all(following == points[: len(following)], axis=1))
     if repeated.size:
-        raise ValueError(f"{name} repeats a point at index {int(repeated[0])} (a zero-length segment)")
+        raise ValueError(f"{name} repeats a point at index {int(repeated[0])} (a zero-length segment): successive "
+                         f"points must differ")
     line = shapely.LinearRing(points) if closed else shapely.LineString(points)
     if not line.is_simple:
-        raise ValueError(f"{name} crosses itself; draw a simple curve")
+        raise ValueError(f"{name} crosses itself; draw a simple curve through the points")
     return points
 
 
 def resample_curve(points, n_points: int, *, closed: bool) -> np.ndarray:
-    """``n_points`` samples equally spaced in arc length along a closed ring or an open polyline."""
+    """``n_points`` samples equally spaced in arc length along a closed ring or an open polyline.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The vertices (finite); a closed ring without its first point repeated.
+    n_points : int
+        Number of samples (>= 3 closed, >= 2 open).
+    closed : bool
+        Whether the last vertex joins the first.
+
+    Returns
+    -------
+    ndarray of float64, shape (n_points, 2)
+        The samples, starting at the first vertex (an open polyline's last sample is its last vertex).
+    """
     closed = check_flag(closed, "closed")
     return resample_closed_curve(points, n_points) if closed else resample_open_curve(points, n_points)
 
@@ -121,6 +153,23 @@ def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve")
     with topology preserved, shapely) at a quarter, a half, then one sample spacing, until the resampled
     curve is simple; a curve that resamples simply is left as it is.
 
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The simple curve's vertices (finite); a closed ring without its first point repeated.
+    n_points : int
+        Number of samples (>= 3 closed, >= 2 open).
+    closed : bool
+        Whether the last vertex joins the first.
+    name : str, default "curve"
+        How error messages name the curve.
+
+    Returns
+    -------
+    ndarray of float64, shape (n_points, 2)
+        The samples, equally spaced in arc length along the curve (or along its simplification),
+        forming a simple curve.
+
     Raises
     ------
     ValueError
@@ -128,6 +177,7 @@ def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve")
         not an integer of at least that many, or the resampled curve still crosses itself (ask for more samples).
     """
     closed = check_flag(closed, "closed")
+    name = label(name)
     least = 3 if closed else 2
     points = point_array(points, "points", min_points=least)
     n_points = integer_at_least(n_points, "n_points", least)
@@ -135,11 +185,14 @@ def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve")
     if line.length == 0:
         raise ValueError("points are all one point: a curve needs length to be resampled")
     for fraction in (0.0, 0.25, 0.5, 1.0):
-        simplified = np.asarray(line.simplify(fraction * line.length / n_points, preserve_topology=True).coords)
+        geometry = line.simplify(fraction * line.length / n_points, preserve_topology=True)
+        if geometry is None or geometry.is_empty:  # GEOS could not simplify at this tolerance: try the next
+            continue
+        simplified = np.asarray(geometry.coords)
         resampled = resample_curve(simplified[:-1] if closed else simplified, n_points, closed=closed)
         if (shapely.LinearRing(resampled) if closed else shapely.LineString(resampled)).is_simple:
             return resampled
-    raise ValueError(f"{name} crosses itself once resampled at {n_points} samples; use more samples")
+    raise ValueError(f"{name} crosses itself once resampled at n_points={n_points} samples; use more samples")
 
 
 def tangent_angles(points, *, closed: bool) -> np.ndarray:
@@ -147,6 +200,19 @@ def tangent_angles(points, *, closed: bool) -> np.ndarray:
 
     Returns ``n`` angles for a closed curve of ``n`` samples (the last segment joins the last sample to the
     first), ``n - 1`` for an open one.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The curve's samples (finite, n >= 2, no two successive equal); a closed curve without its first
+        point repeated.
+    closed : bool
+        Whether the last sample joins the first.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,) or (n - 1,)
+        The unwrapped angles, radians.
 
     Raises
     ------
@@ -160,12 +226,23 @@ def tangent_angles(points, *, closed: bool) -> np.ndarray:
     path = np.vstack([points, points[:1]]) if closed else points
     steps = np.diff(path, axis=0)
     if np.any(np.all(steps == 0.0, axis=1)):
-        raise ValueError("the curve has a zero-length segment: its tangent angle is undefined")
+        raise ValueError("points: the curve has a zero-length segment (two successive points coincide): its tangent "
+                         "angle is undefined")
     return np.unwrap(np.arctan2(steps[:, 1], steps[:, 0]))
 
 
 def total_turning(theta) -> float:
     """Total turning of a closed curve's angles, the closing turn from the last segment to the first included.
+
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        Unwrapped tangent angles of a closed curve, radians (finite, non-empty).
+
+    Returns
+    -------
+    float
+        The total turning in radians (2 pi for a simple counter-clockwise curve).
 
     Raises
     ------
@@ -190,6 +267,11 @@ def filter_weights(filter_width: int = 9, kernel="uniform") -> np.ndarray:
         ``"uniform"``: the moving average of the paper; ``"binomial"``: binomial weights (a discrete
         Gaussian); or any symmetric odd-length array of weights with a positive sum (``filter_width`` is then
         ignored).
+
+    Returns
+    -------
+    ndarray of float64, shape (k,)
+        The taps, symmetric and summing to 1 (``k = filter_width`` for the built-in kernels).
     """
     if isinstance(kernel, str):
         if isinstance(filter_width, bool) or not isinstance(filter_width, (int, np.integer)):
@@ -218,6 +300,23 @@ def lowpass(theta, weights, *, closed: bool, causal: bool = False) -> np.ndarray
     ``causal=True`` is the paper's *"time-invariant causal linear filter"* (section 3, eq. 2): output ``t``
     weighs samples ``t, t - 1, ..., t - len(weights) + 1`` only, so the result lags the signal by the
     filter's mean delay ``sum_k k w_k`` (half its width for a symmetric filter).
+
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        Tangent angles, radians (finite, non-empty).
+    weights : array_like, shape (k,)
+        The filter's taps (:func:`filter_weights`).
+    closed : bool
+        Filter cyclically (a closed curve, the linear trend of its total turning removed first) or,
+        for an open one, with the end samples repeated beyond the ends.
+    causal : bool, default False
+        Use the paper's causal filter instead of the centred one.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        The filtered angles.
 
     Raises
     ------
@@ -267,6 +366,11 @@ def multiscale_angles(theta, scales: int, weights, *, closed: bool, causal: bool
     max_values : int
         Budget: the most values ``scales * n`` the result may hold (default :data:`MAX_SCALE_VALUES`).
 
+    Returns
+    -------
+    ndarray of float64, shape (scales, n)
+        Row 0 the angles themselves, row ``s`` after ``s`` passes of the filter.
+
     Raises
     ------
     ValueError
@@ -287,6 +391,20 @@ def multiscale_angles(theta, scales: int, weights, *, closed: bool, causal: bool
 def integrate_angles(theta, step: float, start=(0.0, 0.0)) -> np.ndarray:
     """The polyline whose segments have length ``step`` and directions ``theta``: ``len(theta) + 1`` points.
 
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        Segment directions, radians (finite).
+    step : float
+        Length of every segment (> 0).
+    start : array_like, shape (2,), default (0, 0)
+        The first point.
+
+    Returns
+    -------
+    ndarray of float64, shape (n + 1, 2)
+        The polyline's points, from ``start``.
+
     Raises
     ------
     ValueError
@@ -303,6 +421,16 @@ def integrate_angles(theta, step: float, start=(0.0, 0.0)) -> np.ndarray:
 def gyration_radius(points) -> float:
     """Root mean square distance of the points to their centroid: a curve's size, robust to its wiggles.
 
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The points (finite, n >= 1).
+
+    Returns
+    -------
+    float
+        ``sqrt(mean |p - centroid|^2)``, in the points' units.
+
     Raises
     ------
     ValueError
@@ -318,6 +446,19 @@ def match_size(points, reference) -> np.ndarray:
     A detailed curve and a smooth curve of the same arc length differ in size (the detail's wiggles use up
     length), so a coarse version or an elaboration is brought to the size and place of the curve it stands
     for. Both are sets of samples equally spaced in arc length, so their centroids are the curves'.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The curve to move and scale (finite, not all one point).
+    reference : array_like, shape (m, 2)
+        The curve whose size and place it takes (finite).
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 2)
+        ``points`` scaled about their centroid to the radius of gyration of ``reference`` and
+        centred on its centroid.
 
     Raises
     ------
@@ -347,6 +488,16 @@ def close_angles(theta) -> np.ndarray:
     to first order), so no kink appears, and every segment keeps its length, so the samples stay equally
     spaced in arc length (unlike :func:`close_curve`, which shifts every segment by the same vector and so
     changes their lengths).
+
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        Tangent angles of a closed curve's equal-length segments, radians (finite, n >= 3).
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        ``theta + delta``, whose unit segments sum to zero (within ``n`` times the closing tolerance).
 
     Raises
     ------
@@ -379,6 +530,20 @@ def coarse_ring(theta, step: float, start) -> np.ndarray:
     distributing the gap (:func:`close_curve`). :func:`.steering.coarsen` draws sketches with it, and
     :func:`.model.train` compares the sketch with the training curves' steering scale as it draws them.
 
+    Parameters
+    ----------
+    theta : array_like, shape (n,)
+        The coarse (filtered) tangent angles of a closed curve, radians (finite, n >= 3).
+    step : float
+        Segment length, the curve's sample spacing (> 0).
+    start : array_like, shape (2,)
+        The ring's first point.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 2)
+        The closed ring, without a repeated end point.
+
     Raises
     ------
     ValueError
@@ -401,6 +566,16 @@ def close_curve(path: np.ndarray) -> np.ndarray:
     ``path`` holds ``n + 1`` points whose last should equal the first. Point ``k`` moves by ``-k / n`` of the
     gap, so the curve closes exactly, the start stays, and every segment changes by the same small vector.
     Returns the ``n`` points of the closed ring (the repeated end dropped).
+
+    Parameters
+    ----------
+    path : array_like, shape (n + 1, 2)
+        The integrated curve (finite, at least 2 points), whose last point should equal the first.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 2)
+        The closed ring, starting at ``path[0]``, without a repeated end point.
 
     Raises
     ------

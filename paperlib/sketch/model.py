@@ -86,7 +86,7 @@ MAX_STATE_VALUES = 2**27
 class SketchModel:
     """A trained class of curves (:func:`train`): the states, their successors and most similar states.
 
-    Attributes
+    Parameters
     ----------
     order, scales, steering_scale : int
         History length O, number of scales S, and the scale whose angle is compared with the sketch.
@@ -179,6 +179,20 @@ def default_weights(scales: int, order: int, *, max_values: int = MAX_STATE_VALU
     ``exp(-tau / h_s)`` with ``h_s = order (s + 1) / scales``: the finest scale counts mostly over its most
     recent samples, the coarsest over the whole history.
 
+    Parameters
+    ----------
+    scales : int
+        Number of scales S (>= 1).
+    order : int
+        History length O (>= 1).
+    max_values : int, optional
+        Budget: the most entries ``scales * order`` allowed (default :data:`MAX_STATE_VALUES`).
+
+    Returns
+    -------
+    ndarray of float64, shape (scales, order)
+        ``W[s, tau] = exp(-tau / h_s)``, in (0, 1], 1 at ``tau = 0``.
+
     Raises
     ------
     ValueError
@@ -193,6 +207,20 @@ def default_weights(scales: int, order: int, *, max_values: int = MAX_STATE_VALU
 
 def state_similarity(a, b, weights, sigma: float) -> np.ndarray:
     """Eq. (4): the similarity of states ``a`` and ``b`` (arrays ``(..., scales, order)``), in (0, 1].
+
+    Parameters
+    ----------
+    a, b : array_like, shape (..., scales, order)
+        States ``gamma(t, s, tau)``, angles in radians (finite; broadcast together).
+    weights : array_like, shape (scales, order)
+        The weight matrix W (non-negative, positive sum).
+    sigma : float
+        Standard deviation of the Gaussian G, radians (> 0).
+
+    Returns
+    -------
+    ndarray of float64, shape (...)
+        ``D = sum W G(wrap(a - b)) / sum W``, in (0, 1].
 
     Raises
     ------
@@ -311,7 +339,8 @@ def train(
         closed curve (a rounded spike does not return where it left), so no closed sketch has them: the
         sketch of a spiky training curve then differs from its own states by up to 1 rad, and the chain
         leaves the curve there (Fig. 6's exact reconstruction failed on 6 of 14 distinct outlines). A steering
-        scale of 0 is the curve's own angle, which needs no closing. : int
+        scale of 0 is the curve's own angle, which needs no closing.
+    max_values : int
         Budget: the most angle values the state table may hold (total samples x scales x order;
         default :data:`MAX_STATE_VALUES`), checked before any curve is resampled.
 

@@ -62,8 +62,10 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .._checks import as_generator, instance_of, integer_array, integer_at_least, positive_number
-from ..geometry import as_points, read_svg
+from .._checks import (as_generator, check_choice, check_flag, instance_of, integer_array, integer_at_least,
+                       positive_number)
+from ..geometry import as_points
+from ..geometry.svg import MAX_DOCUMENT_BYTES, MAX_FLATTENED_POINTS, _read_elements
 from ._kernels import steer
 from .curves import (
     check_curve,
@@ -94,7 +96,7 @@ COARSE = ("state", "sketch")
 class Elaboration:
     """An elaborated curve (:func:`elaborate`).
 
-    Attributes
+    Parameters
     ----------
     points : ndarray, shape (n, 2) or (n + 1, 2)
         The elaborated curve: ``n`` points of a closed ring (no repeated end point) when the sketch is
@@ -132,8 +134,7 @@ class Elaboration:
 
 
 def _check_choice(value, name: str, choices) -> None:
-    if value not in choices:
-        raise ValueError(f"{name} must be one of {choices}, got {value!r}")
+    check_choice(value, choices, name)
 
 
 def _instantiated_angles(model: SketchModel, states: np.ndarray, phi: np.ndarray, keep_coarse: str) -> np.ndarray:
@@ -325,11 +326,24 @@ def crossing_segments(points, *, closed: bool) -> np.ndarray:
     Segment ``i`` joins point ``i`` to point ``i + 1`` (to point 0 for the last segment of a closed ring).
     Segments that share an end point count only if they overlap along a line (a turn back on itself).
 
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The polyline's vertices; a closed ring without its first point repeated.
+    closed : bool
+        Whether the last vertex joins the first.
+
+    Returns
+    -------
+    ndarray of int64, shape (m, 2)
+        One row ``(i, j)``, ``i < j``, per pair of crossing segments.
+
     Raises
     ------
     ValueError
         If ``points`` is not finite ``(n, 2)`` coordinates with at least 3 points (closed) or 2 (open).
     """
+    closed = check_flag(closed, "closed")
     points = as_points(points, name="points", min_points=3 if closed else 2)
     path = np.vstack([points, points[:1]]) if closed else points
     line = shapely.LinearRing(path) if closed else shapely.LineString(path)
@@ -359,6 +373,24 @@ def coarsen(curve, model: SketchModel, *, n_samples: int | None = None, closed: 
     The smooth curve is then brought to the detailed curve's size and place (:func:`.curves.match_size`):
     with the same arc length it would span about ``model.extent_ratio`` times more, which no user drawing the
     curve would do.
+
+    Parameters
+    ----------
+    curve : array_like, shape (n, 2)
+        The detailed curve (simple, no repeated points); a closed curve without its first point
+        repeated.
+    model : SketchModel
+        The trained class (its filter, steering scale and sampling).
+    n_samples : int, optional
+        Samples the curve is resampled at (default: as the model was trained).
+    closed : bool, optional
+        Whether the curve is closed (default: ``model.closed``).
+
+    Returns
+    -------
+    ndarray of float64, shape (n_samples, 2) or (n_samples + 1, 2)
+        The sketch: ``n_samples`` points of a closed ring, or ``n_samples + 1`` points of an open
+        polyline, with the size and centroid of the resampled curve.
 
     Raises
     ------
@@ -390,6 +422,21 @@ def copied_runs(model: SketchModel, states, *, slack: int = 0) -> np.ndarray:
     training curve by repeating a sample or skipping one; ``slack=1`` counts those moves (an advance of 0, 1
     or 2 samples on the same curve) as copying too, a stricter test of novelty.
 
+    Parameters
+    ----------
+    model : SketchModel
+        The trained class the states index.
+    states : array_like of int
+        The states an elaboration instantiated, one per sample (:attr:`Elaboration.states`).
+    slack : int, default 0
+        0: a run continues only through training successors; 1 also counts repeating or skipping a
+        sample on the same curve as copying.
+
+    Returns
+    -------
+    ndarray of int
+        The lengths of the successive runs, in order; they sum to ``len(states)``.
+
     Raises
     ------
     TypeError
@@ -420,10 +467,26 @@ def sketch_from_svg(source, *, tolerance: float = 0.5) -> tuple[np.ndarray, bool
 
     A stroke whose last point repeats its first (a closed path, a polygon, a circle) is closed; the
     repeated point is dropped. Coordinates are y-up (:func:`paperlib.geometry.read_svg`).
+
+    Parameters
+    ----------
+    source : str, bytes or os.PathLike
+        An SVG file name or SVG text.
+    tolerance : float, default 0.5
+        Flattening tolerance of curves, in SVG user units (:func:`paperlib.geometry.read_svg`).
+
+    Returns
+    -------
+    points : ndarray of float64, shape (n, 2)
+        The longest stroke's points, y up, without a repeated end point when closed.
+    closed : bool
+        Whether the stroke is closed.
     """
     if not isinstance(source, (str, bytes, bytearray, os.PathLike)):
         raise TypeError(f"source must be an SVG file name or SVG text, got {type(source).__name__}")
-    strokes = [stroke for element in read_svg(source, tolerance=tolerance) for stroke in element.strokes]
+    elements = _read_elements(source, "source", tolerance=tolerance, y_up=True, max_points=MAX_FLATTENED_POINTS,
+                              max_bytes=MAX_DOCUMENT_BYTES)
+    strokes = [stroke for element in elements for stroke in element.strokes]
     stroke = max(strokes, key=lambda s: float(np.hypot(*np.diff(s.points, axis=0).T).sum()) if len(s.points) > 1
                  else 0.0)
     points = np.array(stroke.points)

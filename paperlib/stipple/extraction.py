@@ -78,7 +78,7 @@ LLOYD_TOLERANCE = 1e-3
 class DistributionResult:
     """Example distribution texture of one tone (Kim et al. 2009, section 3.2).
 
-    Attributes
+    Parameters
     ----------
     distribution : ndarray of bool
         Same shape as the texture; ``True`` at exactly one pixel per stipple centre.
@@ -110,7 +110,7 @@ class DistributionResult:
 class Mark:
     """One stipple mark cropped to its bounding box (Kim et al. 2009, sections 3.2 and 4.2).
 
-    Attributes
+    Parameters
     ----------
     mask : ndarray of bool
         The mark's pixels (``True``) in its bounding box.

@@ -221,6 +221,16 @@ def offset_directions(offsets) -> np.ndarray:
     For :func:`paper_offsets` the three blocks (horizontal, vertical, left-down diagonal) get
     0, 1 and 2. Used by the per-direction acceptance rule of the synthesis (section 3.4.1).
 
+    Parameters
+    ----------
+    offsets : array_like of int, shape (k, 2)
+        Displacement vectors ``(dy, dx)``, none zero.
+
+    Returns
+    -------
+    ndarray of int64, shape (k,)
+        Direction index of each offset, numbered 0, 1, ... in order of first appearance.
+
     Raises
     ------
     ValueError
@@ -276,6 +286,18 @@ def pair_totals(shape, offsets) -> np.ndarray:
 
     It depends only on the shape, so a normalised GLCM is ``counts / pair_totals`` whatever
     pixels the synthesis flips.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        ``(height, width)`` of the texture, pixels.
+    offsets : array_like of int, shape (k, 2)
+        Displacement vectors ``(dy, dx)`` (non-zero, fitting the texture).
+
+    Returns
+    -------
+    ndarray of int, shape (k,)
+        ``(h - |dy|) (w - |dx|)`` per offset.
 
     References
     ----------
@@ -340,7 +362,7 @@ def cooccurrence_counts(texture, offsets) -> np.ndarray:
 class GLCMFeatures:
     """Normalised GLCMs of one texture and their statistics, one entry per offset.
 
-    Attributes
+    Parameters
     ----------
     glcm : numpy.ndarray, shape (k, 2, 2)
         Normalised GLCMs ``N_d`` (each sums to 1).
@@ -357,6 +379,17 @@ class GLCMFeatures:
 
 def normalized_glcms(counts) -> np.ndarray:
     """Counts divided by their total per offset: the normalised GLCMs ``N_d`` of eqs. (2)-(5).
+
+    Parameters
+    ----------
+    counts : array_like of int, shape (k, 2, 2)
+        Co-occurrence counts per offset (:func:`cooccurrence_counts`), non-negative, each offset
+        with at least one pair.
+
+    Returns
+    -------
+    ndarray of float64, shape (k, 2, 2)
+        ``N_d``: each offset's counts divided by their sum, so each sums to 1.
 
     Raises
     ------
@@ -436,6 +469,11 @@ def ace(features_a, features_b) -> float:
     ----------
     features_a, features_b : GLCMFeatures or array_like, shape (k, 2, 2)
         Normalised GLCMs of the example and synthesized textures for the same k offsets.
+
+    Returns
+    -------
+    float
+        The ACE, in [0, 2]; 0 for identical GLCMs.
 
     Raises
     ------
@@ -596,6 +634,17 @@ def flip_update_kernel(texture, counts, y, x, offsets):
     equal to ``cooccurrence_counts(texture, offsets)``, ``offsets`` int64 (k, 2) non-zero and
     fitting the texture, ``0 <= y < h``, ``0 <= x < w``. Any non-zero pixel reads as ink, so
     indices into ``counts`` stay in range whatever the texture holds.
+
+    Parameters
+    ----------
+    texture : ndarray, 2-D, bool or integer
+        The distribution texture, flipped in place at ``(y, x)`` (writeable).
+    counts : ndarray of int64, shape (k, 2, 2)
+        ``cooccurrence_counts(texture, offsets)``, updated in place.
+    y, x : int
+        Row and column of the pixel to flip.
+    offsets : ndarray of int64, shape (k, 2)
+        The displacement vectors ``(dy, dx)`` (non-zero, fitting the texture).
     """
     _flip_update_kernel(*_checked_flip(texture, counts, y, x, offsets, writeable=True))
 
@@ -617,6 +666,12 @@ def ace_change_kernel(texture, counts, y, x, offsets, target, totals):
         Normalised GLCMs of the example texture, ``N_t`` of eq. (5).
     totals : float64 array, shape (k,)
         ``pair_totals(texture.shape, offsets)``: the normaliser of ``counts``.
+
+    Returns
+    -------
+    float
+        The change of the ACE the flip would make (negative: the flip brings the texture's GLCMs
+        closer to ``target``).
 
     References
     ----------

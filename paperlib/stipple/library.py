@@ -35,7 +35,7 @@ __all__ = ["StippleLibrary", "learn_stipple_library"]
 class StippleLibrary:
     """Everything learnt from one artist's tone textures, lightest tone first.
 
-    Attributes
+    Parameters
     ----------
     examples : list of ndarray of bool
         The example stipple textures (``True`` = ink).
@@ -82,6 +82,22 @@ class StippleLibrary:
         around the library's stipple tones (section 3.2: "Tone 0 and 9 are pure white and black
         respectively"), so white stays paper and black is solid ink; False clamps every gray to
         the library's tones (:func:`paperlib.stipple.render_stippling`).
+
+        Parameters
+        ----------
+        image : array_like of float, 2-D
+            Input intensities in [0, 1] (0 black, 1 white).
+        min_chunk : int, default 1
+            :func:`remove_small_chunks`' ``min_size``; 1 is no removal.
+        pure_levels : bool, default True
+            Render with the pure white and pure black levels around the library's tones.
+        rng : None, int or numpy.random.Generator, optional
+            Random source; a seed fixes the output bit for bit.
+
+        Returns
+        -------
+        StippleRendering
+            The stipple image, its level map and distribution image.
         """
         return render_stippling(image, self.tiles, self.marks, tone_grays=self.tone_grays, min_chunk=min_chunk,
                                 pure_levels=pure_levels, rng=rng)

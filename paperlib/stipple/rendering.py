@@ -107,7 +107,7 @@ PURE_BLACK = 0.0
 class ChunkRemoval:
     """Result of :func:`remove_small_chunks`.
 
-    Attributes
+    Parameters
     ----------
     image : ndarray of bool
         The cleaned stipple image, ``True`` = ink.
@@ -126,7 +126,7 @@ class ChunkRemoval:
 class StippleRendering:
     """Result of :func:`render_stippling` (Kim et al. 2009, section 4).
 
-    Attributes
+    Parameters
     ----------
     image : ndarray of bool
         Final stipple image, ``True`` = ink.
@@ -178,28 +178,39 @@ def _checked_tiles(distribution_textures) -> list[np.ndarray]:
     return tiles
 
 
-def _checked_library(marks, tone: int) -> tuple[list[Mark], bool]:
-    """One tone's mark library and its colour (True = white marks)."""
-    library = list(marks)
+def _checked_library(marks, tone: int, name: str = "marks") -> tuple[list[Mark], bool]:
+    """One tone's mark library and its colour (True = white marks); ``name``: the caller's parameter."""
+    try:
+        library = list(marks)
+    except TypeError:
+        raise TypeError(f"{name}: the mark library of tone {tone} must be a sequence of "
+                        f"paperlib.stipple.extraction.Mark, got {type(marks).__name__}") from None
     if not library:
-        raise ValueError(f"tone {tone} has an empty mark library")
+        raise ValueError(f"{name}: tone {tone} has an empty mark library")
     for mark in library:
         if not isinstance(mark, Mark):
-            raise ValueError(f"tone {tone}: marks must be paperlib.stipple.extraction.Mark, got {type(mark).__name__}")
+            raise ValueError(f"{name}: tone {tone}: marks must be paperlib.stipple.extraction.Mark, got "
+                             f"{type(mark).__name__}")
         if mark.mask.ndim != 2 or mark.mask.dtype != np.bool_ or not mark.mask.any():
-            raise ValueError(f"tone {tone}: a mark's mask must be a non-empty 2-D bool array")
+            raise ValueError(f"{name}: tone {tone}: a mark's mask must be a non-empty 2-D bool array")
     colours = {bool(mark.white) for mark in library}
     if len(colours) != 1:
-        raise ValueError(f"tone {tone} mixes black and white marks; a level uses one colour (section 4.2)")
+        raise ValueError(f"{name}: tone {tone} mixes black and white marks; a level uses one colour (section 4.2)")
     return library, colours.pop()
 
 
-def _checked_libraries(marks_per_tone, n_tones: int) -> tuple[list[list[Mark]], np.ndarray]:
-    """All mark libraries, one per tone, and the per-tone colour (True = white marks)."""
-    libraries = list(marks_per_tone)
-    if len(libraries) != n_tones:
-        raise ValueError(f"need one mark library per tone: {n_tones} tones, {len(libraries)} libraries")
-    checked = [_checked_library(marks, tone) for tone, marks in enumerate(libraries)]
+def _checked_libraries(marks_per_tone, n_tones: int | None) -> tuple[list[list[Mark]], np.ndarray]:
+    """All mark libraries, one per tone (``n_tones`` of them, any number when None), and the per-tone colour
+    (True = white marks)."""
+    try:
+        libraries = list(marks_per_tone)
+    except TypeError:
+        raise TypeError(f"marks_per_tone must be a sequence of mark libraries, one per tone, got "
+                        f"{type(marks_per_tone).__name__}") from None
+    if n_tones is not None and len(libraries) != n_tones:
+        raise ValueError(f"marks_per_tone: need one mark library per tone: {n_tones} tones, {len(libraries)} "
+                         f"libraries")
+    checked = [_checked_library(marks, tone, "marks_per_tone") for tone, marks in enumerate(libraries)]
     return [library for library, _ in checked], np.array([white for _, white in checked], dtype=bool)
 
 
@@ -606,8 +617,7 @@ def place_marks(distribution, tone_index, marks_per_tone, rng=None, *, pure_leve
     of a mark); section 3.2 (tones 0 and 9 pure white and black).
     """
     centres = _checked_bitonal(distribution, "distribution")
-    given = list(marks_per_tone)
-    libraries, white = _checked_libraries(given, len(given))
+    libraries, white = _checked_libraries(marks_per_tone, None)
     if len(libraries) < 2:
         raise ValueError(f"marks_per_tone must hold at least two tone levels, got {len(libraries)} mark libraries")
     pure_levels = _checked_pure_levels(pure_levels)

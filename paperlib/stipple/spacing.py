@@ -60,6 +60,17 @@ def _stipple_pixels(texture, name: str) -> tuple[np.ndarray, tuple[int, int]]:
 def stipple_pattern(texture) -> PointPattern:
     """The stipple pixels of a distribution texture as a point pattern (x = column, y = row).
 
+    Parameters
+    ----------
+    texture : array_like, 2-D
+        A bitonal distribution texture (bool or 0/1) with at least two ink pixels.
+
+    Returns
+    -------
+    PointPattern
+        One point per ink pixel, at the pixel centre ``(column + 0.5, row + 0.5)``, in the window
+        ``[0, width] x [0, height]``.
+
     Raises
     ------
     ValueError
@@ -75,6 +86,17 @@ def nearest_neighbour_distances(texture) -> np.ndarray:
 
     Their minimum, mean and maximum are the paper's O_min, O_avg and O_max when the texture
     holds one pixel per stipple (an example distribution texture, Kim et al. 2009, 3.2).
+
+    Parameters
+    ----------
+    texture : array_like, 2-D
+        A bitonal texture (bool or 0/1) with at least two ink pixels.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,)
+        For each of the ``n`` ink pixels, in row-major order, the distance in pixels to the
+        nearest other ink pixel.
 
     Raises
     ------
@@ -123,7 +145,7 @@ def pair_correlation(texture, r=None, *, bw=None) -> np.ndarray:
 class SpacingComparison:
     """How far a distribution texture's spacing is from a reference's.
 
-    Attributes
+    Parameters
     ----------
     nn_ks : float
         Two-sample Kolmogorov-Smirnov statistic (0 .. 1) of the nearest-neighbour distances.
@@ -152,6 +174,19 @@ def compare_spacing(reference, texture) -> SpacingComparison:
     Both are bitonal distribution textures of the same shape. The pair correlation functions
     are estimated on the reference's grid with the reference's kernel width; the first radius
     (0) is left out of the root mean square, where the kernel estimate is not defined.
+
+    Parameters
+    ----------
+    reference : array_like, 2-D
+        The reference bitonal distribution texture (one ink pixel per stipple), at least two stipples.
+    texture : array_like, 2-D
+        The distribution texture to compare, of the same shape, at least two stipples.
+
+    Returns
+    -------
+    SpacingComparison
+        The KS statistic of the nearest-neighbour distances, the RMS difference of the pair
+        correlation functions, and the curves and distances they come from.
 
     Raises
     ------
@@ -186,6 +221,18 @@ def block_dispersion(texture, block: int = 32) -> float:
     About 1 for ink placed independently (Poisson counts), well below 1 for evenly spread
     stipples, and far above 1 when a tile has bands or holes (Kim et al. 2009, Fig. 7's tiles
     should be as homogeneous as their examples).
+
+    Parameters
+    ----------
+    texture : array_like, 2-D
+        A bitonal texture (bool or 0/1), ink ``True``/1.
+    block : int, default 32
+        Block side in pixels (>= 1); partial blocks at the right and bottom edges are left out.
+
+    Returns
+    -------
+    float
+        Sample variance (ddof 1) over mean of the ink pixel counts per block.
 
     Raises
     ------

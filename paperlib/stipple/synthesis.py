@@ -103,7 +103,7 @@ ACCEPT_TOLERANCE = 1e-12
 class StippleGeometry:
     """Stipple size and nearest-neighbour offsets of an example texture (Kim et al. 2009, 3.2).
 
-    Attributes
+    Parameters
     ----------
     s_avg : float
         Average stipple size, in pixels (area of a connected component).
@@ -286,7 +286,7 @@ def _spin_flip_pass(texture, counts, offsets, target, totals, groups, changes, o
 class SynthesisResult:
     """Outcome of :func:`synthesize_distribution`.
 
-    Attributes
+    Parameters
     ----------
     texture : numpy.ndarray of bool
         The synthesized distribution texture, ``True`` = ink.
@@ -398,6 +398,16 @@ def paper_radius_quantiles(geometry: StippleGeometry) -> np.ndarray:
     ``(O_avg - O_max, 0]``. So D is uniform on ``[O_min, O_avg)`` for ``u < 0.1``, ``O_avg``
     up to ``u = 0.9`` and uniform on ``(O_avg, O_max]`` beyond: piecewise linear in ``u``,
     exact at these eleven knots.
+
+    Parameters
+    ----------
+    geometry : StippleGeometry
+        The example's ``O_min``, ``O_avg`` and ``O_max`` (pixels).
+
+    Returns
+    -------
+    ndarray of float64, shape (11,)
+        D at ``u = 0, 0.1, ..., 1``, pixels, non-decreasing.
     """
     instance_of(geometry, StippleGeometry, "geometry")
     knots = np.linspace(0.0, 1.0, 11)

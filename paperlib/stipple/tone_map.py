@@ -49,7 +49,7 @@ _REFINE_ROUNDS = 5
 class ToneMap:
     """Example textures extracted from a stipple drawing, lightest first.
 
-    Attributes
+    Parameters
     ----------
     gray_levels : ndarray of float, shape (k,)
         Average gray level of each selected region's blocks (1 white .. 0 black), decreasing.
@@ -206,6 +206,13 @@ def segment_blocks(block_gray, t1) -> np.ndarray:
     neighbourhood: the region is the 8-connected component (:func:`skimage.measure.label`,
     ``connectivity=2``) of free blocks within ``t1`` of the region's mean gray level, which is
     re-estimated until the region is stable (at most 5 rounds).
+
+    Parameters
+    ----------
+    block_gray : array_like of float, shape (rows, cols)
+        Average gray level of every block (finite; 1 white .. 0 black).
+    t1 : float
+        The threshold ``T1``: largest gray difference of a block from its region's mean (>= 0).
 
     Returns
     -------

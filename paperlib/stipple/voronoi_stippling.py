@@ -56,10 +56,12 @@ import numpy as np
 from scipy.spatial import cKDTree
 from skimage.draw import disk
 
-from paperlib._checks import as_generator, positive_number
+from paperlib._checks import as_generator, budget, check_budget, float_array, positive_number
 
 __all__ = ["VoronoiStipples", "render_stipples", "stipple_density", "weighted_centroids", "weighted_voronoi_stipples"]
 
+#: Default budget of :func:`render_stipples` (``max_pixels``): 2**26 pixels (a 64 MiB raster, 8192 x 8192).
+MAX_RENDER_PIXELS = 2**26
 #: Largest number of candidates drawn at once by the rejection sampler (bounds memory).
 _MAX_BATCH = 1 << 20
 
@@ -67,7 +69,7 @@ _MAX_BATCH = 1 << 20
 class VoronoiStipples(NamedTuple):
     """Result of :func:`weighted_voronoi_stipples` (unpacks as ``points, displacements, converged``).
 
-    Attributes
+    Parameters
     ----------
     points : ndarray of float, shape (n, 2)
         Stipple positions ``(x, y)`` in pixel coordinates.
@@ -338,7 +340,8 @@ def weighted_voronoi_stipples(image, n_points, *, iterations=50, tol=0.01, rng=N
 # ============================================================================ rendering
 
 
-def render_stipples(points, shape, radius=1.0, *, density=None, min_radius=0.5) -> np.ndarray:
+def render_stipples(points, shape, radius=1.0, *, density=None, min_radius=0.5,
+                    max_pixels: int = MAX_RENDER_PIXELS) -> np.ndarray:
     """Draw stipples as filled discs into a bitonal raster.
 
     Parameters
@@ -355,6 +358,9 @@ def render_stipples(points, shape, radius=1.0, *, density=None, min_radius=0.5) 
         at its centre pixel, so darker regions get larger dots.
     min_radius : float, optional
         Smallest radius when ``density`` is given (default 0.5), 0 < min_radius <= radius.
+    max_pixels : int, optional
+        Budget: the most pixels (``height * width``) the raster may have (default
+        :data:`MAX_RENDER_PIXELS`, 2**26); a larger ``shape`` raises ValueError before allocating.
 
     Returns
     -------
@@ -374,6 +380,7 @@ def render_stipples(points, shape, radius=1.0, *, density=None, min_radius=0.5) 
     Secord (2002): stipples drawn as discs whose size may follow the density.
     """
     height, width = _check_shape(shape)
+    check_budget(height * width, budget(max_pixels, "max_pixels"), "max_pixels", "pixels")
     array = _check_points(points, (height, width))
     radius = positive_number(radius, "radius")
     radii = np.full(len(array), radius)
@@ -382,7 +389,7 @@ def render_stipples(points, shape, radius=1.0, *, density=None, min_radius=0.5) 
         min_radius = positive_number(min_radius, "min_radius")
         if min_radius > radius:
             raise ValueError(f"min_radius ({min_radius}) must not exceed radius ({radius})")
-        weights = np.asarray(density, dtype=float)
+        weights = float_array(density, "density", f"a {height} x {width} array of values in [0, 1]")
         if weights.shape != (height, width):
             raise ValueError(f"density must have shape {(height, width)}, got {weights.shape}")
         if not np.all(np.isfinite(weights)) or weights.min() < 0 or weights.max() > 1:

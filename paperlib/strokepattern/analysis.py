@@ -27,13 +27,14 @@ References
 from __future__ import annotations
 
 from dataclasses import dataclass
+from numbers import Real
 
 import numpy as np
 import shapely
 from matplotlib.colors import to_rgb
 from scipy.spatial import Delaunay, QhullError
 
-from .._checks import check_edges, instance_of, point_array, positive_number
+from .._checks import check_edges, float_array, instance_of, label, point_array, positive_number
 from ..geometry import (
     Element,
     OrientedBoxes,
@@ -156,6 +157,17 @@ def proximity(corners_a, corners_b):
     ``corners_*`` are box corners ``(4, 2)`` or ``(k, 4, 2)`` (broadcasting); the directed Hausdorff distance is
     exact between the filled boxes (:func:`paperlib.geometry.directed_hausdorff_boxes`). Small when one box
     nests in, or hugs, the other.
+
+    Parameters
+    ----------
+    corners_a, corners_b : array_like, shape (4, 2) or (k, 4, 2)
+        Box corners (broadcast together).
+
+    Returns
+    -------
+    float or ndarray of float
+        The proximity of each pair of boxes, in the boxes' units (the broadcast shape without the
+        corner axes).
     """
     return np.minimum(directed_hausdorff_boxes(corners_a, corners_b), directed_hausdorff_boxes(corners_b, corners_a))
 
@@ -326,13 +338,46 @@ def cluster_strokes(strokes, epsilon: float, *, contour: bool = False) -> np.nda
 # --------------------------------------------------------------------------- 2.3 distribution
 
 
+def check_dimension(dimension) -> int:
+    """``dimension`` unchanged if it is 1 (a path) or 2 (a region), else a ValueError naming it."""
+    if not isinstance(dimension, Real) or dimension not in (1, 2):
+        raise ValueError(f"dimension must be 1 (a path) or 2 (a region), got {dimension!r:.80}")
+    return dimension
+
+
 def graph_edges(edges, n: int, name: str = "edges") -> np.ndarray:
-    """``edges`` as an ``(m, 2)`` int64 array of node pairs, each node in ``[0, n)``; ValueError otherwise."""
-    return check_edges(edges, n, name)
+    """``edges`` as an ``(m, 2)`` int64 array of node pairs, each node in ``[0, n)``; ValueError otherwise.
+
+    Parameters
+    ----------
+    edges : array_like of int, shape (m, 2)
+        Node pairs.
+    n : int
+        Number of nodes.
+    name : str, default "edges"
+        How error messages name the argument.
+
+    Returns
+    -------
+    ndarray of int64, shape (m, 2)
+        The edges.
+    """
+    return check_edges(edges, n, label(name))
 
 
 def chain_edges(order) -> np.ndarray:
-    """Edges between consecutive elements of a 1D chain, ``(n - 1, 2)`` (section 2.3)."""
+    """Edges between consecutive elements of a 1D chain, ``(n - 1, 2)`` (section 2.3).
+
+    Parameters
+    ----------
+    order : array_like of int, shape (n,)
+        Node indices in chain order.
+
+    Returns
+    -------
+    ndarray of int64, shape (n - 1, 2)
+        ``(order[k], order[k + 1])`` for each consecutive pair.
+    """
     order = np.asarray(order)
     if order.ndim != 1 or (order.size and not np.issubdtype(order.dtype, np.integer)):
         raise ValueError(f"order must be a 1D array of integer node indices, got {order.dtype} of shape {order.shape}")
@@ -347,6 +392,13 @@ def unskewed_delaunay_edges(points, *, max_angle: float = MAX_UNSKEWED_ANGLE) ->
     triangles lie mostly along the border of the triangulation, where their long edges join elements that
     are not perceived as neighbours.
 
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        Element centres (finite, n >= 3, not all collinear).
+    max_angle : float, default 2 pi / 3
+        Largest angle, radians, of an unskewed triangle.
+
     Returns
     -------
     ndarray of int, shape (m, 2)
@@ -359,12 +411,12 @@ def unskewed_delaunay_edges(points, *, max_angle: float = MAX_UNSKEWED_ANGLE) ->
     """
     points = point_array(points, "points")
     if len(points) < 3:
-        raise ValueError(f"a 2D distribution needs at least 3 element centres, got {len(points)}")
+        raise ValueError(f"a 2D distribution needs at least 3 points (element centres), got {len(points)}")
     try:
         triangles = Delaunay(points).simplices
     except QhullError:
-        raise ValueError("the element centres are collinear (or repeated): they span no triangle; "
-                         "analyse the pattern as 1D") from None
+        raise ValueError("the points (element centres) are collinear (or repeated): they span no triangle; "
+                         "analyse the pattern as 1D (dimension=1)") from None
     corners = points[triangles]
     sides = np.stack([corners[:, (k + 2) % 3] - corners[:, (k + 1) % 3] for k in range(3)], axis=1)
     lengths = np.hypot(sides[..., 0], sides[..., 1])
@@ -375,8 +427,8 @@ def unskewed_delaunay_edges(points, *, max_angle: float = MAX_UNSKEWED_ANGLE) ->
     largest = np.arccos(np.clip(cosines, -1.0, 1.0)).max(axis=1)
     kept = triangles[largest <= max_angle]
     if len(kept) == 0:
-        raise ValueError("the Delaunay triangulation of the element centres has no unskewed triangle "
-                         f"(every triangle has an angle above {np.degrees(max_angle):.0f} degrees)")
+        raise ValueError("the Delaunay triangulation of the points (element centres) has no unskewed triangle "
+                         f"(every triangle has an angle above max_angle = {np.degrees(max_angle):.0f} degrees)")
     edges = np.sort(np.concatenate([kept[:, [0, 1]], kept[:, [1, 2]], kept[:, [0, 2]]]), axis=1)
     return np.unique(edges, axis=0)
 
@@ -394,10 +446,20 @@ def shift_vectors(positions, edges) -> np.ndarray:
     """Shift vectors S_ref: each element's position minus the barycentre of its neighbours (section 2.3).
 
     Returns ``(n, 2)``; NaN for an element without neighbours.
+
+    Parameters
+    ----------
+    positions : array_like, shape (n, 2)
+        Element positions (finite).
+    edges : array_like of int, shape (m, 2)
+        The neighbour graph.
+
+    Returns
+    -------
+    ndarray of float64, shape (n, 2)
+        S_ref per element; NaN for an element without neighbours.
     """
-    positions = np.asarray(positions, dtype=np.float64)
-    if positions.ndim != 2 or positions.shape[1] != 2 or not np.isfinite(positions).all():
-        raise ValueError(f"positions must be a finite (n, 2) array, got shape {positions.shape}")
+    positions = point_array(positions, "positions")
     edges = graph_edges(edges, len(positions))
     sums = np.zeros_like(positions)
     counts = np.bincount(edges.ravel(), minlength=len(positions)).astype(np.float64)
@@ -429,7 +491,7 @@ def neighbourhood_areas(positions, edges, dimension: int) -> np.ndarray:
 class PatternAnalysis:
     """A reference stroke pattern analysed at one scale (section 2).
 
-    Attributes
+    Parameters
     ----------
     strokes : tuple of Stroke
         The input, in drawing order.
@@ -513,11 +575,22 @@ def as_region(region):
     """A region as a valid shapely (Multi)Polygon of positive area.
 
     Accepts a shapely (Multi)Polygon, a polygon's vertices ``(m, 2)`` or a rectangle ``(xmin, xmax, ymin, ymax)``.
+
+    Parameters
+    ----------
+    region : shapely.Polygon, shapely.MultiPolygon or array_like
+        A polygon, polygon vertices ``(m, 2)`` with m >= 3, or a rectangle ``(xmin, xmax, ymin, ymax)``.
+
+    Returns
+    -------
+    shapely.Polygon or shapely.MultiPolygon
+        The region, valid and of positive area.
     """
     from shapely.geometry import MultiPolygon, Polygon
 
     if not isinstance(region, (Polygon, MultiPolygon)):
-        array = np.asarray(region, dtype=np.float64)
+        array = float_array(region, "region", "a shapely Polygon, polygon vertices (m, 2) with m >= 3, or a "
+                                              "rectangle (xmin, xmax, ymin, ymax)")
         if array.shape == (4,):
             xmin, xmax, ymin, ymax = array
             region = shapely.box(xmin, ymin, xmax, ymax)
@@ -603,8 +676,7 @@ def analyze(strokes, epsilon: float, *, dimension: int = 2, contour: bool = Fals
     ----------
     Barla et al. 2006, sections 2.1-2.3.
     """
-    if dimension not in (1, 2):
-        raise ValueError(f"dimension must be 1 (a path) or 2 (a region), got {dimension!r}")
+    check_dimension(dimension)
     strokes = as_strokes(strokes)
     labels = cluster_strokes(strokes, epsilon, contour=contour)
     n_elements = int(labels.max()) + 1

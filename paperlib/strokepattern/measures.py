@@ -50,6 +50,19 @@ class Thresholds:
 
     The defaults are the paper's: sigma_shape = 0.1 L, sigma_par = pi / 20, sigma_ov = 1.5, sigma_sup = 0.1 L,
     sigma_col = 0.15.
+
+    Parameters
+    ----------
+    shape : float, default 0.1
+        sigma_shape as a fraction of the mean element length L.
+    par : float, default pi / 20
+        sigma_par, radians.
+    ov : float, default 1.5
+        sigma_ov (a ratio of lengths).
+    sup : float, default 0.1
+        sigma_sup as a fraction of the mean element length L.
+    col : float, default 0.15
+        sigma_col (an RGB distance).
     """
 
     shape: float = 0.1
@@ -65,7 +78,18 @@ class Thresholds:
             raise ValueError(f"threshold ov is a ratio of lengths and must exceed 1, got {self.ov!r}")
 
     def vector(self, mean_length: float) -> np.ndarray:
-        """The five thresholds in :data:`MEASURES` order, shape and sup scaled by ``mean_length``."""
+        """The five thresholds in :data:`MEASURES` order, shape and sup scaled by ``mean_length``.
+
+        Parameters
+        ----------
+        mean_length : float
+            L, the mean element length, in the pattern's units.
+
+        Returns
+        -------
+        ndarray of float64, shape (5,)
+            ``(shape L, par, ov, sup L, col)``.
+        """
         return np.array([self.shape * mean_length, self.par, self.ov, self.sup * mean_length, self.col])
 
 
@@ -73,6 +97,18 @@ def rule_score(means, sigmas) -> np.ndarray:
     """``max(r_col, min(r_shape, max(r_par, r_ov, r_sup)))`` with ``r_m = mean_m / sigma_m``; < 1 iff matching.
 
     ``means`` has the measures on its last axis, in :data:`MEASURES` order.
+
+    Parameters
+    ----------
+    means : array_like, shape (..., 5)
+        Mean measures, in :data:`MEASURES` order on the last axis.
+    sigmas : array_like, shape (5,)
+        The thresholds (positive, finite; :meth:`Thresholds.vector`).
+
+    Returns
+    -------
+    ndarray of float64, shape (...)
+        The rule score; below 1 where the neighbourhoods match.
     """
     for value, name in ((means, "means"), (sigmas, "sigmas")):
         if isinstance(value, (str, bytes)):
@@ -112,6 +148,12 @@ def measure_tables(half_lengths, angles, colors) -> np.ndarray:
         Major-axis angles *in each element's local frame* (box angle minus frame angle).
     colors : array_like, shape (n, 3)
         RGB in [0, 1].
+
+    Returns
+    -------
+    ndarray of float64, shape (5, n, n)
+        ``[m, i, j]``: measure ``m`` (``shape``, ``par``, ``ov``, ``sup``, ``col``, :data:`MEASURES`
+        order) between elements ``i`` and ``j``; symmetric in ``i, j``.
 
     Notes
     -----

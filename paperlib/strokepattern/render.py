@@ -40,6 +40,17 @@ def plot_strokes(items, ax=None, *, colors=None, alpha: float = 1.0, autoscale: 
     items : sequence of Stroke or Element
     colors : sequence of colours, optional
         One per stroke (overrides the strokes' own colours), e.g. to colour strokes by cluster.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on (default: the current axes).
+    alpha : float, default 1
+        Opacity of the ink.
+    autoscale : bool, default True
+        Rescale the axes' view to the data and set an equal aspect ratio.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
     """
     import matplotlib.pyplot as plt
     from matplotlib.collections import PathCollection
@@ -68,7 +79,23 @@ def plot_strokes(items, ax=None, *, colors=None, alpha: float = 1.0, autoscale: 
 
 
 def plot_boxes(boxes: OrientedBoxes, ax=None, **style):
-    """Outline oriented boxes (e.g. ``PatternAnalysis.boxes``); returns the axes."""
+    """Outline oriented boxes (e.g. ``PatternAnalysis.boxes``); returns the axes.
+
+    Parameters
+    ----------
+    boxes : OrientedBoxes
+        The boxes to outline.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on (default: the current axes).
+    **style
+        Keyword arguments of :class:`matplotlib.collections.PolyCollection`, over the defaults
+        (no fill, orange edges 0.8 wide).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
 
@@ -80,7 +107,25 @@ def plot_boxes(boxes: OrientedBoxes, ax=None, **style):
 
 
 def plot_graph(positions, edges, ax=None, **style):
-    """Draw a neighbour graph: segments between the positions of each edge; returns the axes."""
+    """Draw a neighbour graph: segments between the positions of each edge; returns the axes.
+
+    Parameters
+    ----------
+    positions : array_like, shape (n, 2)
+        Node positions (finite).
+    edges : array_like of int, shape (m, 2)
+        Node pairs, each node in ``[0, n)``.
+    ax : matplotlib.axes.Axes, optional
+        The axes to draw on (default: the current axes).
+    **style
+        Keyword arguments of :class:`matplotlib.collections.LineCollection`, over the defaults
+        (grey segments 0.6 wide).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The axes drawn on.
+    """
     import matplotlib.pyplot as plt
     from matplotlib.collections import LineCollection
 

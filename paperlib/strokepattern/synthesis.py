@@ -55,7 +55,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import breadth_first_order
 
 from ..geometry import Element, Stroke, lloyd_relaxation
-from .._checks import as_generator, budget, check_budget, instance_of, positive_number
+from .._checks import as_generator, budget, check_budget, instance_of, point_array, positive_number
 from ._kernels import BEST, CLOSE, RANDOM, grow
 from .analysis import (
     PatternAnalysis,
@@ -90,7 +90,20 @@ def _extent(target, dimension: int):
 
 
 def target_count(analysis: PatternAnalysis, target) -> int:
-    """N_tar = N_ref A_tar / A_ref, rounded, at least 1 (section 3.2)."""
+    """N_tar = N_ref A_tar / A_ref, rounded, at least 1 (section 3.2).
+
+    Parameters
+    ----------
+    analysis : PatternAnalysis
+        The analysed reference (its element count N_ref, area A_ref and dimension).
+    target : array_like or shapely.Polygon
+        The target path (1D, an ``(m, 2)`` polyline) or region (2D, see :func:`as_region`).
+
+    Returns
+    -------
+    int
+        N_tar, at least 1.
+    """
     instance_of(analysis, PatternAnalysis, "analysis")
     _, extent = _extent(target, analysis.dimension)
     return max(1, int(round(len(analysis) * extent / analysis.area)))
@@ -101,7 +114,19 @@ def target_count(analysis: PatternAnalysis, target) -> int:
 
 @dataclass(frozen=True, eq=False)
 class Seeds:
-    """Relaxed seed positions with their local frames and neighbour graph."""
+    """Relaxed seed positions with their local frames and neighbour graph.
+
+    Parameters
+    ----------
+    positions : ndarray, shape (n, 2)
+        The seed positions.
+    frames : ndarray, shape (n,)
+        Local frame angle of each seed: the path's tangent (1D), 0 (2D).
+    edges : ndarray of int, shape (m, 2)
+        The neighbour graph: the chain in path order (1D) or the unskewed Delaunay edges (2D).
+    arc : ndarray, shape (n,)
+        Arc-length position of each seed along the path (1D); NaN in 2D.
+    """
 
     positions: np.ndarray
     frames: np.ndarray
@@ -127,6 +152,22 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> S
 
     The random start draws one uniform position in each of n equal arc-length strata: a random start without
     the long-wavelength clumps that 1D Lloyd iterations take O(n^2) steps to even out.
+
+    Parameters
+    ----------
+    path : array_like, shape (m, 2)
+        The target polyline.
+    n : int
+        Number of seeds.
+    iterations : int, default 40
+        Lloyd iterations.
+    rng : None, int or numpy.random.Generator, optional
+        Source of randomness for the start.
+
+    Returns
+    -------
+    Seeds
+        Positions on the path, path tangents as frames, the chain edges and the arc lengths.
     """
     path, length = _extent(path, 1)
     n = _count(n)
@@ -153,6 +194,22 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) ->
     """N seeds in a region by Lloyd's method (Voronoi cells clipped to the region, section 3.2).
 
     Neighbours are the unskewed Delaunay edges (no triangle angle above 2 pi / 3), as in the analysis.
+
+    Parameters
+    ----------
+    region : shapely.Polygon or array_like
+        The target region (see :func:`as_region`).
+    n : int
+        Number of seeds (>= 3).
+    iterations : int, default 40
+        Lloyd iterations.
+    rng : None, int or numpy.random.Generator, optional
+        Source of randomness for the uniform start.
+
+    Returns
+    -------
+    Seeds
+        Positions in the region, zero frames, the unskewed Delaunay edges and NaN arc lengths.
     """
     region, _ = _extent(region, 2)
     n = _count(n)
@@ -165,7 +222,7 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) ->
 
 def _count(n) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"the number of seeds must be an integer >= 1, got {n!r}")
+        raise ValueError(f"n (the number of seeds) must be an integer >= 1, got {n!r:.80}")
     return int(n)
 
 
@@ -197,6 +254,24 @@ def ring_neighbourhoods(n: int, edges, rings: int, *, max_pairs: int = MAX_PAIRS
     ``neighbours[pointers[i]:pointers[i + 1]]``, sorted. ``max_pairs`` (default :data:`MAX_PAIRS`)
     bounds the ``n`` nodes and, ring by ring, the (node, neighbour) pairs found: a ValueError
     before allocating more.
+
+    Parameters
+    ----------
+    n : int
+        Number of nodes.
+    edges : array_like of int, shape (m, 2)
+        The neighbour graph.
+    rings : int
+        The neighbourhood size k, in hops (>= 1).
+    max_pairs : int, optional
+        Budget on nodes and (node, neighbour) pairs (default :data:`MAX_PAIRS`, 2**24).
+
+    Returns
+    -------
+    pointers : ndarray of int64, shape (n + 1,)
+        CSR row pointers.
+    neighbours : ndarray of int64
+        The neighbours of every node, node after node, each node's sorted.
     """
     if isinstance(rings, bool) or not isinstance(rings, (int, np.integer)) or rings < 1:
         raise ValueError(f"rings (the neighbourhood size k) must be an integer >= 1, got {rings!r}")
@@ -229,10 +304,23 @@ def _local_offsets(positions, frames, pointers, neighbours) -> np.ndarray:
 
 
 def growth_order(positions, edges, start: int) -> np.ndarray:
-    """Nodes by increasing hops from ``start``, ties by distance to it; unreachable nodes last (section 3.2)."""
-    positions = np.asarray(positions, dtype=np.float64)
-    if positions.ndim != 2 or positions.shape[1] != 2 or not np.isfinite(positions).all():
-        raise ValueError(f"positions must be a finite (n, 2) array, got shape {positions.shape}")
+    """Nodes by increasing hops from ``start``, ties by distance to it; unreachable nodes last (section 3.2).
+
+    Parameters
+    ----------
+    positions : array_like, shape (n, 2)
+        Node positions (finite).
+    edges : array_like of int, shape (m, 2)
+        The neighbour graph.
+    start : int
+        The node growth starts from, in ``[0, n)``.
+
+    Returns
+    -------
+    ndarray of int, shape (n,)
+        The node indices in growth order, ``start`` first.
+    """
+    positions = point_array(positions, "positions")
     n = len(positions)
     if isinstance(start, bool) or not isinstance(start, (int, np.integer)) or not 0 <= start < n:
         raise ValueError(f"start must be a node index in [0, {n}), got {start!r}")
@@ -305,7 +393,7 @@ def pairing_gate(analysis: PatternAnalysis) -> float:
 class Synthesis:
     """A synthesised stroke pattern.
 
-    Attributes
+    Parameters
     ----------
     elements : tuple of Element
         The synthesised elements, one per seed (copies of reference elements).

@@ -133,8 +133,14 @@ def vary_positions(synthesis: Synthesis, analysis: PatternAnalysis, *, k: int | 
 
     Parameters
     ----------
+    synthesis : Synthesis
+        The synthesised pattern.
+    analysis : PatternAnalysis
+        The analysed reference it was synthesised from.
     k : int, optional
         Minimum number of neighbours; default 2 in 1D and 4 in 2D, the paper's.
+    scaling : {"length", "printed"}, default "length"
+        How ``S_ref`` is rescaled (see above).
 
     Returns
     -------
