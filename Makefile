@@ -3,6 +3,7 @@
 #   make reproduce   every notebook at paper quality -> figures/ and figures/INDEX.md
 #   make bench       speed measurements -> benchmarks/results.json
 #   make fuzz        the full fuzz campaign (>= 10,000 Hypothesis inputs) -> build/fuzz/summary.md
+#   make docs        the documentation site from the executed notebooks -> build/docs/html/index.html
 #   make strip       remove outputs from the notebook sources
 
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
@@ -11,16 +12,16 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 JOBS ?= 2
 
-.PHONY: test lint reproduce reproduce-ci bench fuzz strip clean
+.PHONY: test lint reproduce reproduce-ci bench fuzz docs strip clean
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e ".[test,dask]"
+	$(BIN)/python -m pip install --quiet -e ".[test,dask,docs]"
 	touch $(STAMP)
 
 lint: $(STAMP)
-	$(BIN)/ruff check paperlib tests benchmarks
+	$(BIN)/ruff check paperlib tests benchmarks docs
 
 test: lint
 	$(BIN)/python -m pytest
@@ -37,6 +38,12 @@ bench: $(STAMP)
 # every public callable, 34 inputs each (>= 10,000 in all), 6 GiB and 20 s per case (tests/fuzz_harness.py)
 fuzz: $(STAMP)
 	$(BIN)/python tests/fuzz_harness.py --examples 34 --jobs $(JOBS) --out build/fuzz
+
+# Executes nothing: pages show build/notebooks/ (left by `make reproduce`) or the sources' markdown, with the
+# committed figures. -E rereads every page so that every warning is reported, and -W makes it an error.
+docs: $(STAMP)
+	$(BIN)/sphinx-build -E -W --keep-going -j $(JOBS) -b html docs build/docs/html
+	@echo "open build/docs/html/index.html"
 
 strip: $(STAMP)
 	$(BIN)/jupyter nbconvert --clear-output --inplace notebooks/*.ipynb

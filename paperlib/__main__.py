@@ -1,7 +1,8 @@
-"""Command line: ``python -m paperlib reproduce`` and ``python -m paperlib seed-study``.
+"""Command line: ``python -m paperlib reproduce``, ``seed-study`` and ``explore``.
 
 ``reproduce`` runs notebooks and checks their statistics; ``seed-study`` prints each statistic's
-spread over seeds (how a ``seed-study`` bound is measured). The help texts below are plain text:
+spread over seeds (how a ``seed-study`` bound is measured); ``explore`` serves a method's app with
+Voila (:mod:`paperlib.apps`). The help texts below are plain text:
 they are what a terminal shows.
 """
 
@@ -20,7 +21,8 @@ against tests/expected_stats.toml.
 commands:
   reproduce    run notebooks (all, or those matching --only), write figures/<notebook>/ and
                figures/INDEX.md, and fail on any statistic out of tolerance
-  seed-study   run notebooks over several seeds and print each statistic's range"""
+  seed-study   run notebooks over several seeds and print each statistic's range
+  explore      serve a method's interactive explorer as a web app (Voila, 127.0.0.1)"""
 
 EXAMPLES = """\
 examples:
@@ -33,7 +35,18 @@ examples:
   python -m paperlib reproduce --root ~/src/paperlib --only fig05
       run from another folder: --root names the repository
   python -m paperlib seed-study --only barla2006_fig03-04_matching --seeds 0-9
-      the spread of every statistic over ten seeds"""
+      the spread of every statistic over ten seeds
+  python -m paperlib explore kim2009 --open-browser
+      the Kim 2009 explorer at http://127.0.0.1:8866/"""
+
+EXPLORE_EXAMPLES = """\
+examples:
+  python -m paperlib explore hurtut2009
+      serve the Hurtut 2009 explorer at http://127.0.0.1:8866/ (Ctrl-C stops)
+  python -m paperlib explore stipple --port 8870 --open-browser
+      the Kim 2009 explorer (module names work too) on another port, opened in your browser
+  python -m paperlib explore alvarez2015 --file-root ~/textures
+      scripts and saved textures read and written only under ~/textures"""
 
 REPRODUCE_EXAMPLES = """\
 examples:
@@ -87,7 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="python -m paperlib", description=DESCRIPTION, epilog=EXAMPLES,
                                      formatter_class=formatter)
     parser.add_argument("--version", action="version", version=f"paperlib {_version()}")
-    commands = parser.add_subparsers(dest="command", required=True, metavar="{reproduce,seed-study}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="{reproduce,seed-study,explore}")
     run = commands.add_parser("reproduce", help="run the notebooks and check their statistics",
                               description="Run notebooks with papermill, publish their figures, check their\n"
                                           "statistics and write figures/INDEX.md.",
@@ -108,7 +121,25 @@ def build_parser() -> argparse.ArgumentParser:
     study.add_argument("--only", metavar="PATTERN", required=True, help="glob or substring of the notebook names")
     study.add_argument("--seeds", type=_seed_range, default=list(range(5)), metavar="A-B",
                        help="seeds to run, as A-B or a comma list (default: 0-4)")
+    _explore_parser(commands, formatter)
     return parser
+
+
+def _explore_parser(commands, formatter) -> None:
+    from .apps import ALIASES, APPS
+
+    lines = "\n".join(f"  {key:<12} {description}" for key, (_, description) in APPS.items())
+    explore = commands.add_parser(
+        "explore", help="serve a method's interactive explorer as a web app",
+        description=f"Serve a method's explorer app with Voila on 127.0.0.1 (the panel only, a live kernel\n"
+                    f"behind it). Methods (or their module names: {', '.join(ALIASES)}):\n{lines}",
+        epilog=EXPLORE_EXAMPLES, formatter_class=formatter)
+    explore.add_argument("method", help="paper key or module name of the method")
+    explore.add_argument("--port", type=int, default=8866, help="TCP port (default: 8866)")
+    explore.add_argument("--file-root", type=Path, metavar="DIR",
+                         help="the only folder the app's file boxes may read and write (default: "
+                              "$PAPERLIB_FILE_ROOT, else build/explorer_files)")
+    explore.add_argument("--open-browser", action="store_true", help="open the page in your browser")
 
 
 def _is_repository(root: Path) -> bool:
@@ -161,6 +192,16 @@ def _seed_study(args) -> int:
     return 0
 
 
+def _explore(args) -> int:
+    from . import apps
+
+    try:
+        return apps.serve(args.method, port=args.port, file_root=args.file_root, open_browser=args.open_browser)
+    except (TypeError, ValueError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+
+
 def main(argv=None) -> int:
     """Run ``python -m paperlib`` with ``argv`` (default: the command line); the exit status.
 
@@ -173,11 +214,13 @@ def main(argv=None) -> int:
     -------
     int
         0 when every notebook ran and every statistic is within tolerance, 1 on a failed
-        notebook or statistic, 2 on a usage error.
+        notebook or statistic, 2 on a usage error; for ``explore``, Voila's exit status.
     """
     args = build_parser().parse_args(argv)
     if args.command == "seed-study":
         return _seed_study(args)
+    if args.command == "explore":
+        return _explore(args)
     try:
         runs, table = reproduce_module.reproduce(
             args.root, quality=args.quality, only=args.only, jobs=args.jobs, seed=args.seed, timeout=args.timeout,

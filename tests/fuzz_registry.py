@@ -31,6 +31,7 @@ MODULES = (
     "paperlib.geometry", "paperlib.pointprocess", "paperlib.acontrario", "paperlib.arrangement",
     "paperlib.strokepattern", "paperlib.stipple", "paperlib.mlts", "paperlib.sketch", "paperlib.datasets",
     "paperlib.widgets", "paperlib.repro", "paperlib.parallel", "paperlib.reproduce", "paperlib.claims",
+    "paperlib.fidelity", "paperlib.apps",
 )
 
 
@@ -184,6 +185,8 @@ KINDS = {
     "count": _or_hostile(_counts_scalar),
     "bool": _or_hostile(st.booleans(), 2),
     "str": _or_hostile(_strings),
+    "app": _or_hostile(st.sampled_from(["hurtut2009", "barla2006", "kim2009", "alvarez2015", "simhon2001",
+                                        "stipple", "sketch"])),
     "path": _or_hostile(_paths),
     "vectorish": _or_hostile(_vectors),
     "shape": _or_hostile(_shapes),
@@ -218,6 +221,7 @@ REGISTRY = {
     "paperlib.geometry.signed_area": "ring=points",
     "paperlib.geometry.stack_strokes": "elements=elements",
     "paperlib.geometry.svg_string": "elements=elements ; width=count height=count y_up=bool",
+    "paperlib.geometry.turning_angles": "points=points | closed=bool",
     "paperlib.geometry.write_svg": "elements=elements path=path",
     "paperlib.pointprocess.Kcross": "pattern=pattern i=count j=count ; r=float correction=str rmax=float",
     "paperlib.pointprocess.Kest": "pattern=pattern ; r=float correction=str rmax=float",
@@ -486,11 +490,18 @@ REGISTRY = {
     "paperlib.datasets.wave_hatching_exemplar": "; n_elements=count jitter=float spacing=float rng=rng",
     "paperlib.widgets.ArrangementExplorer": "| exemplar=any exemplar_seed=rng seed=rng T=count window_scale=any density=image labels=counts interaction=str image=image figsize=shape dpi=float",
     "paperlib.widgets.Drawing": "name=str elements=elements frame=any window=window truth=any truth_categories=any description=str",
-    "paperlib.widgets.arrangement_explorer": "; exemplar_seed=rng seed=rng T=count density=image labels=counts interaction=str image=image figsize=shape dpi=float svg=svg",
+    "paperlib.widgets.arrangement_explorer": "; exemplar_seed=rng seed=rng T=count density=image labels=counts interaction=str image=image figsize=shape dpi=float svg=svg file_root=path",
     "paperlib.widgets.density_image": "kind=str window=window ; image=image resolution=float",
     "paperlib.widgets.scaled_window": "window=window scale=float",
     "paperlib.widgets.MLTSExplorer": "; output_dir=path | random_seed=any max_tried=any",
-    "paperlib.widgets.mlts_explorer": "; size=count output_dir=path",
+    "paperlib.widgets.mlts_explorer": "; size=count output_dir=path file_root=path",
+    "paperlib.apps.resolve_method": "method=app",
+    "paperlib.apps.default_file_root": "",
+    "paperlib.apps.app_notebook": "method=app",
+    "paperlib.apps.voila_command": "method=app ; port=count open_browser=bool",
+    "paperlib.apps.voila_environment": "; file_root=path",
+    "paperlib.apps.app": "method=app ; file_root=path",
+    "paperlib.apps.serve": "method=app ; port=count file_root=path open_browser=bool",
     "paperlib.widgets.StippleExplorer": "| source=path sheet_seed=any n_tones=count block=count tone=image N=any T1=any T2=any iterations=count tile=any seed=rng image=image render_size=any min_chunk=float workers=count figsize=shape dpi=float",
     "paperlib.widgets.stipple_explorer": "; source=path n_tones=count block=count tone=image iterations=count seed=rng image=image min_chunk=float workers=count figsize=shape dpi=float",
     "paperlib.widgets.StrokePatternExplorer": "| exemplar=any exemplar_seed=rng contour=points rings=count amount=float vary=any choice=str seed=rng figsize=shape dpi=float canvas_size=shape",
@@ -521,6 +532,17 @@ REGISTRY = {
     "paperlib.claims.ledger_table": "claims=any check=any",
     "paperlib.claims.load_claims": "path=path",
     "paperlib.claims.write_ledger": "path=path title=any table=any",
+    "paperlib.fidelity.FidelityScore": "measure=str value=float control=float controls=vector control_kind=str better_than_control=bool ratio=float p_value=float",
+    "paperlib.fidelity.glcm_correlation": "image=image ; distances=vector",
+    "paperlib.fidelity.glcm_score": "exemplar=image synthesis=image ; distances=vector nsim=count rng=rng",
+    "paperlib.fidelity.hausdorff_score": "guide=points synthesis=points ; nsim=count rng=rng | closed=bool",
+    "paperlib.fidelity.l_score": "exemplar=pattern synthesis=pattern ; r=vector nsim=count rng=rng",
+    "paperlib.fidelity.lcross_score": "exemplar=pattern synthesis=pattern i=count j=count ; r=vector nsim=count rng=rng",
+    "paperlib.fidelity.mark_difference_score": "exemplar=pattern exemplar_marks=vector synthesis=pattern synthesis_marks=vector ; period=float nsim=count rng=rng",
+    "paperlib.fidelity.nn_distance_score": "exemplar=pattern synthesis=pattern ; nsim=count rng=rng",
+    "paperlib.fidelity.pcf_score": "exemplar=pattern synthesis=pattern ; r=vector nsim=count rng=rng",
+    "paperlib.fidelity.turning_angles": "points=points | closed=bool",
+    "paperlib.fidelity.turning_score": "exemplar_curves=curves synthesis=points guide=points | closed=bool",
 
 }
 
@@ -531,6 +553,10 @@ NOT_FUZZED = {
     "paperlib.reproduce.run_notebook": "executes a notebook through papermill; tests/test_reproduce_cli.py",
     "paperlib.reproduce.seed_study": "runs notebooks over many seeds; tests/test_reproduce_cli.py",
     "paperlib.parallel.run_many": "runs a caller's function in worker processes (the fuzz worker must not fork pools)",
+    "paperlib.apps.app": "builds a whole explorer (up to 20 s with a cold numba cache); its parts are fuzzed: "
+                         "resolve_method and the five explorer factories of paperlib.widgets",
+    "paperlib.apps.serve": "starts a Voila server and blocks until interrupted; tests/test_apps.py checks its command "
+                           "and environment, tests/test_apps_browser.py serves every app",
 }
 
 #: Callables in code outside this change (paperlib.pointprocess, paperlib.arrangement) whose fuzzing still

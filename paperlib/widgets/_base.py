@@ -12,6 +12,7 @@ import io
 import math
 import time
 from contextlib import contextmanager
+from pathlib import Path
 
 from paperlib._checks import integer_at_least
 
@@ -35,6 +36,72 @@ def figure_settings(figsize, dpi) -> tuple[tuple[float, float], int]:
     if width * height * dpi**2 > MAX_FIGURE_PIXELS:
         raise ValueError(f"figsize {figsize!r} at dpi {dpi} makes a figure above {MAX_FIGURE_PIXELS:,} pixels")
     return (width, height), dpi
+
+
+def check_file_root(file_root) -> Path | None:
+    """The folder an explorer's file boxes are confined to, checked: None (anywhere) or an existing folder.
+
+    Parameters
+    ----------
+    file_root : str, os.PathLike or None
+        None lets the boxes name any path (a notebook on your own machine); a folder confines every
+        path typed in them to that folder (a served app, :mod:`paperlib.apps`).
+
+    Returns
+    -------
+    Path or None
+        The folder, resolved (symbolic links followed), or None.
+    """
+    if file_root is None:
+        return None
+    if isinstance(file_root, bool) or not isinstance(file_root, (str, Path)):
+        raise TypeError(f"file_root must be None, a str or a Path, got {type(file_root).__name__}")
+    if not str(file_root).strip() or "\0" in str(file_root):
+        raise ValueError(f"file_root must name a folder, got {str(file_root)!r:.80}")
+    folder = Path(file_root).expanduser().resolve()
+    if not folder.is_dir():
+        raise ValueError(f"file_root must be an existing folder, got {str(file_root)!r}")
+    return folder
+
+
+def user_path(text, file_root: Path | None, what: str) -> Path:
+    """The path typed in a file box: anywhere without a file root, else inside it.
+
+    With a root, a relative path is taken from the root, and a path that leaves it (an absolute
+    path elsewhere, ``..``, a symbolic link pointing out) is refused: a served app must not read or
+    write the server's other files.
+
+    Parameters
+    ----------
+    text : str or os.PathLike
+        What the box holds.
+    file_root : Path or None
+        From :func:`check_file_root`.
+    what : str
+        The box's label, for the messages ("SVG", "script path", ...).
+
+    Returns
+    -------
+    Path
+    """
+    text = str(text).strip()
+    if not text:
+        raise ValueError(f"no path given: type one in the '{what}' box")
+    if file_root is None:
+        return Path(text).expanduser()
+    path = (file_root / text).resolve()
+    if path != file_root and file_root not in path.parents:
+        raise ValueError(f"the path {text!r} in the '{what}' box is outside the folder this app may use "
+                         f"({file_root}): give a path inside it, or upload the file")
+    return path
+
+
+def uploaded_file(upload) -> tuple[str, bytes] | None:
+    """Name and bytes of the file last chosen in an ipywidgets ``FileUpload`` (None if none)."""
+    if not upload.value:
+        return None
+    chosen = upload.value[-1]
+    return str(chosen["name"]), bytes(chosen["content"])
 
 
 class ExplorerBase:
@@ -80,10 +147,34 @@ class ExplorerBase:
 class CanvasDrawing:
     """Drawing with the mouse on an ipycanvas ``Canvas``: press, drag, release (or leave the canvas).
 
-    A subclass sets ``canvas``, ``drawn_points = []`` and ``_stroke_active = False``, connects the canvas's
-    mouse events to the four handlers below, and implements ``_redraw_canvas()`` and ``_drawing_finished()``
-    (what the released drawing does: become the target, be elaborated, ...).
+    A subclass sets ``canvas``, ``drawn_points = []`` and ``_stroke_active = False``, calls
+    :meth:`_connect_canvas`, and implements ``_draw_canvas()`` (paint the whole canvas) and
+    ``_drawing_finished()`` (what the released drawing does: become the target, be elaborated, ...).
+
+    The canvas is painted only once a browser view of it has said it is ready (ipycanvas's
+    ``client_ready`` event), and painted again for every view that connects later: a draw command sent
+    before the page has the canvas fails in the page ("Cannot read properties of undefined"), as Voila
+    showed while it executed the app, and a view that connects late would start blank.
     """
+
+    _canvas_ready = False
+
+    def _connect_canvas(self) -> None:
+        """Route the canvas's mouse events to the handlers below; paint it when a view is ready."""
+        self.canvas.on_client_ready(self._on_client_ready)
+        self.canvas.on_mouse_down(self._on_mouse_down)
+        self.canvas.on_mouse_move(self._on_mouse_move)
+        self.canvas.on_mouse_up(self._on_mouse_up)
+        self.canvas.on_mouse_out(self._on_mouse_out)
+
+    def _on_client_ready(self) -> None:
+        self._canvas_ready = True
+        self._redraw_canvas()
+
+    def _redraw_canvas(self) -> None:
+        """Paint the whole canvas (:meth:`_draw_canvas`) if a view can receive it."""
+        if self._canvas_ready:
+            self._draw_canvas()
 
     def _on_mouse_down(self, x, y) -> None:
         """Start a new drawing (the previous one is forgotten)."""
@@ -99,8 +190,9 @@ class CanvasDrawing:
             return
         previous = self.drawn_points[-1]
         self.drawn_points.append(point)
-        self.canvas.stroke_style, self.canvas.line_width = "#1f77b4", 2
-        self.canvas.stroke_line(*previous, *point)
+        if self._canvas_ready:
+            self.canvas.stroke_style, self.canvas.line_width = "#1f77b4", 2
+            self.canvas.stroke_line(*previous, *point)
 
     def _on_mouse_up(self, x, y) -> None:
         """End the drawing and hand it to :meth:`_drawing_finished`."""

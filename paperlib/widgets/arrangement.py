@@ -65,7 +65,8 @@ from pathlib import Path
 import numpy as np
 
 from paperlib import datasets
-from paperlib.widgets._base import ExplorerBase, figure_settings
+from paperlib._checks import check_choice
+from paperlib.widgets._base import ExplorerBase, check_file_root, figure_settings, uploaded_file, user_path
 from paperlib.arrangement import Arrangement, adjusted_rand_index, categorize, fit, render, synthesize
 from paperlib.arrangement import element_positions
 from paperlib.geometry import as_elements, read_svg
@@ -151,8 +152,7 @@ def density_image(kind: str, window: Window, *, image: str = "camera", resolutio
     ----------
     Hurtut et al. (2009), section 4.1, Figure 7 (user-drawn gray-level density).
     """
-    if kind not in DENSITY_KINDS:
-        raise ValueError(f"density kind must be one of {DENSITY_KINDS}, got {kind!r}")
+    check_choice(kind, DENSITY_KINDS, "density kind")
     if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) or resolution < 2:
         raise ValueError(f"resolution must be an integer >= 2, got {resolution!r}")
     if not isinstance(window, Window):
@@ -180,11 +180,12 @@ def density_image(kind: str, window: Window, *, image: str = "camera", resolutio
 class Drawing:
     """The exemplar the explorer works on.
 
-    Attributes
+    Parameters
     ----------
     name : str
         Generator name, or the SVG file name.
     elements : list of Element
+        The drawing's elements.
     frame : Window
         The drawing's frame (its area is the categorization's reference surface).
     window : Window
@@ -192,7 +193,9 @@ class Drawing:
     truth : numpy.ndarray or None
         Ground-truth category of each element (index into ``truth_categories``); None for SVG.
     truth_categories : tuple or None
+        The ground-truth category names; None for SVG.
     description : str
+        One sentence saying what the drawing is.
     """
 
     name: str
@@ -213,13 +216,15 @@ def _exemplar_drawing(name: str, seed: int) -> Drawing:
                    np.asarray(exemplar.labels), tuple(exemplar.categories), exemplar.description)
 
 
-def _svg_drawing(path) -> Drawing:
-    if not str(path).strip():
-        raise ValueError("no SVG file given: type a path in the SVG box")
-    path = Path(str(path).strip()).expanduser()
-    if not path.is_file():
-        raise FileNotFoundError(f"no SVG file at {str(path)!r}")
-    elements = as_elements(read_svg(path))
+def _svg_drawing(path_or_bytes, name: str | None = None) -> Drawing:
+    """The drawing of an SVG file (a Path) or of an uploaded document (bytes, with its file ``name``)."""
+    if isinstance(path_or_bytes, bytes):
+        path = Path(name or "uploaded.svg")
+    else:
+        path = Path(path_or_bytes)
+        if not path.is_file():
+            raise FileNotFoundError(f"no SVG file at {str(path)!r}")
+    elements = as_elements(read_svg(path_or_bytes))
     bounds = np.array([element.bounds() for element in elements])
     (x0, y0), (x1, y1) = bounds[:, :2].min(axis=0), bounds[:, 2:].max(axis=0)
     if not (x1 > x0 and y1 > y0):
@@ -235,6 +240,37 @@ def _svg_drawing(path) -> Drawing:
 class ArrangementExplorer(ExplorerBase):
     """Widgets and state of the Hurtut 2009 explorer (built by :func:`arrangement_explorer`).
 
+    Parameters
+    ----------
+    exemplar : str
+        One of :data:`EXEMPLARS` (``two_category``, ``big_small``, ``regularity``,
+        ``lattice``, ``hatching``, ``drawn_hatching``, ``near_identical``, ``amacrine``).
+    exemplar_seed : int
+        Seed of the exemplar generator and of categorize's ROBPCA.
+    seed : int
+        Seed of the synthesis (same seed, same arrangement).
+    T : int
+        Metropolis-Hastings steps, in [1e3, 1e5] (the paper uses 1e5).
+    window_scale : float
+        Side of the synthesis window over the exemplar's, in [0.5, 3].
+    density : {"uniform", "gradient", "radial", "image"}
+        Density image (:func:`density_image`).
+    labels : {"categorize", "truth"}
+        Categories from section 2.2's categorization or the generator's ground truth.
+    interaction : {"centre", "box_hausdorff", "box_gap"}
+        The pair distance of the model: element positions (the paper's model), or the
+        elements' bounding boxes (section 4.3's proposal, and our gap variant).
+    image : str
+        Grayscale image of the ``"image"`` density (:func:`paperlib.datasets.grayscale_names`).
+    figsize : pair of float
+        Figure size in inches.
+    dpi : int
+        Resolution of the figure shown in the widget.
+    file_root : str, os.PathLike or None
+        None: the SVG box reads any path. A folder: the box reads only files inside it (relative
+        paths from it), as a served app must (:mod:`paperlib.apps`); the upload button reads files
+        from the browser either way.
+
     Attributes
     ----------
     widget : ipywidgets.VBox
@@ -242,6 +278,8 @@ class ArrangementExplorer(ExplorerBase):
     exemplar, exemplar_seed, labels, drop_small, svg_path, load_button, T, window_scale,
     density, seed, resynthesize_button : ipywidgets controls
         See :func:`arrangement_explorer`.
+    upload : ipywidgets.FileUpload
+        Loads an SVG drawing from the browser (the only way in for files outside ``file_root``).
     image : ipywidgets.Image
         The figure, as PNG.
     status : ipywidgets.HTML
@@ -271,7 +309,7 @@ class ArrangementExplorer(ExplorerBase):
     """
 
     def __init__(self, *, exemplar: str, exemplar_seed: int, seed: int, T: int, window_scale: float,
-                 density: str, labels: str, interaction: str, image: str, figsize, dpi: int):
+                 density: str, labels: str, interaction: str, image: str, figsize, dpi: int, file_root=None):
         import ipywidgets as w
 
         _check_choice(exemplar, tuple(EXEMPLARS), "exemplar")
@@ -289,6 +327,7 @@ class ArrangementExplorer(ExplorerBase):
             raise ValueError(f"window_scale must be in [{SCALE_RANGE[0]}, {SCALE_RANGE[1]}], got {window_scale!r}")
         exemplar_seed, seed, T, window_scale = int(exemplar_seed), int(seed), int(T), float(window_scale)
         self._figsize, self._dpi = figure_settings(figsize, dpi)
+        self._file_root = check_file_root(file_root)
         self._image_name = image
         self.drawing = self.categorization = self.model = self.arrangement = None
         self.density_array = self.figure = self.error = None
@@ -318,9 +357,11 @@ class ArrangementExplorer(ExplorerBase):
                                       value=interaction, description="interaction", style=wide)
         self.drop_small = w.Checkbox(value=False, description=f"drop categories of < {MIN_FIT_SIZE} elements",
                                      indent=False)
-        self.svg_path = w.Text(value="", placeholder="path/to/drawing.svg", description="SVG", style=wide,
+        where = "path/to/drawing.svg" if self._file_root is None else f"drawing.svg (in {self._file_root.name}/)"
+        self.svg_path = w.Text(value="", placeholder=where, description="SVG", style=wide,
                                layout=w.Layout(width="420px"))
         self.load_button = w.Button(description="load SVG", icon="folder-open")
+        self.upload = w.FileUpload(accept=".svg,.svgz", multiple=False, description="upload SVG")
         self.T = w.FloatLogSlider(value=T, base=10, min=math.log10(T_RANGE[0]), max=math.log10(T_RANGE[1]),
                                   step=0.05, description="T (MCMC steps)", readout_format=".3g",
                                   continuous_update=False, style=wide)
@@ -337,7 +378,7 @@ class ArrangementExplorer(ExplorerBase):
         self.status = w.HTML()
         self.widget = w.VBox([
             w.HBox([self.exemplar, self.exemplar_seed, self.labels]),
-            w.HBox([self.svg_path, self.load_button, self.drop_small]),
+            w.HBox([self.svg_path, self.load_button, self.upload, self.drop_small]),
             w.HBox([self.interaction]),
             w.HBox([self.T, self.window_scale]),
             w.HBox([self.density, self.seed, self.resynthesize_button]),
@@ -355,6 +396,7 @@ class ArrangementExplorer(ExplorerBase):
         for control in (self.T, self.window_scale, self.density, self.seed):
             on(control, self.synthesize)
         self.load_button.on_click(lambda _: self.load_svg(self.svg_path.value))
+        self.upload.observe(lambda _: self.load_upload(), names="value")
         self.resynthesize_button.on_click(lambda _: self.next_seed())
 
     # ------------------------------------------------------------------ actions
@@ -367,6 +409,11 @@ class ArrangementExplorer(ExplorerBase):
 
     def load_exemplar(self, name: str) -> bool:
         """Generate exemplar ``name`` (seed ``exemplar_seed``), categorize, fit and synthesize.
+
+        Parameters
+        ----------
+        name : str
+            One of :data:`EXEMPLARS`.
 
         Returns
         -------
@@ -381,6 +428,11 @@ class ArrangementExplorer(ExplorerBase):
         The window is the drawing's bounding box. A missing or unreadable file leaves the
         current drawing in place and shows the error.
 
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The SVG file (inside ``file_root`` when the explorer has one).
+
         Returns
         -------
         bool
@@ -388,7 +440,21 @@ class ArrangementExplorer(ExplorerBase):
         """
         with self._quiet():
             self.svg_path.value = str(path)
-        return self._load(lambda: _svg_drawing(path), SVG_SOURCE)
+        return self._load(lambda: _svg_drawing(user_path(path, self._file_root, "SVG")), SVG_SOURCE)
+
+    def load_upload(self) -> bool:
+        """Read the SVG file last chosen in the **upload SVG** button and synthesize (as :meth:`load_svg`).
+
+        Returns
+        -------
+        bool
+            Whether a synthesis was produced (False, with nothing changed, when no file is chosen).
+        """
+        chosen = uploaded_file(self.upload)
+        if chosen is None:
+            return False
+        name, content = chosen
+        return self._load(lambda: _svg_drawing(content, name), SVG_SOURCE)
 
     def _svg_label_note(self) -> list:
         """An SVG has no ground truth: switch the label source to categorize, and say so."""
@@ -415,7 +481,13 @@ class ArrangementExplorer(ExplorerBase):
         return self._update(began, _warning_lines(caught) + self._svg_label_note())
 
     def next_seed(self) -> bool:
-        """Re-synthesize with the next seed (the re-synthesize button)."""
+        """Re-synthesize with the next seed (the re-synthesize button).
+
+        Returns
+        -------
+        bool
+            Whether a synthesis was produced (see :meth:`synthesize`).
+        """
         with self._quiet():
             self.seed.value = int(self.seed.value) + 1
         return self.synthesize()
@@ -465,7 +537,20 @@ class ArrangementExplorer(ExplorerBase):
         return self.categorization
 
     def current_labels(self) -> tuple[np.ndarray, tuple]:
-        """Category index of each element and category names, from the chosen label source."""
+        """Category index of each element and category names, from the chosen label source.
+
+        Returns
+        -------
+        labels : numpy.ndarray of int
+            Category index of each element of ``drawing``.
+        categories : tuple
+            The category names the labels index.
+
+        Raises
+        ------
+        ValueError
+            When ground truth is asked of an SVG drawing, which has none.
+        """
         if self.labels.value == "truth":
             if self.drawing.truth is None:
                 raise ValueError("an SVG drawing has no ground-truth labels: choose 'categorize'")
@@ -599,7 +684,7 @@ def _parameters_line(model) -> str:
 def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int = 0, seed: int = 0,
                          T: int = 100_000, window_scale: float = 1.0, density: str = "uniform",
                          labels: str = "categorize", interaction: str = "centre", image: str = "camera",
-                         figsize=(11, 5), dpi: int = 80, svg=None) -> ArrangementExplorer:
+                         figsize=(11, 5), dpi: int = 80, svg=None, file_root=None) -> ArrangementExplorer:
     """An interactive explorer of Hurtut 2009's categorization and synthesis.
 
     Builds the controls, loads ``exemplar`` (or the SVG file ``svg``), categorizes, fits and
@@ -634,6 +719,10 @@ def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int =
         Resolution of the figure shown in the widget.
     svg : str or os.PathLike, optional
         Start from this SVG drawing instead of ``exemplar``.
+    file_root : str, os.PathLike or None
+        None: the SVG box reads any path. A folder: the box reads only files inside it (relative
+        paths from it), as a served app must (:mod:`paperlib.apps`); the upload button reads files
+        from the browser either way.
 
     Returns
     -------
@@ -651,7 +740,8 @@ def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int =
     """
     explorer = ArrangementExplorer(exemplar=exemplar, exemplar_seed=exemplar_seed, seed=seed, T=T,
                                    window_scale=window_scale, density=density, labels=labels,
-                                   interaction=interaction, image=image, figsize=figsize, dpi=dpi)
+                                   interaction=interaction, image=image, figsize=figsize, dpi=dpi,
+                                   file_root=file_root)
     if svg is not None:
         explorer.load_svg(svg)
     else:
@@ -660,5 +750,4 @@ def arrangement_explorer(exemplar: str = "two_category", *, exemplar_seed: int =
 
 
 def _check_choice(value, choices: tuple, name: str) -> None:
-    if not isinstance(value, str) or value not in choices:
-        raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}")
+    check_choice(value, choices, name)

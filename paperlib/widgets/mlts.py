@@ -112,7 +112,8 @@ from paperlib.mlts import (
     sample_structure,
     write_texture_svg,
 )
-from paperlib.widgets._base import ExplorerBase
+from paperlib.mlts.script import _pixels
+from paperlib.widgets._base import ExplorerBase, check_file_root, uploaded_file, user_path
 
 __all__ = ["EXPORT_FORMATS", "LAYER_FIELDS", "MAX_TRIED", "MLTSExplorer", "STRUCTURE_CACHE", "default_output_dir",
            "default_script", "mlts_explorer", "png_bytes"]
@@ -173,16 +174,17 @@ def default_output_dir() -> Path:
     return (root if root is not None else Path.cwd()) / "build" / "mlts_explorer"
 
 
-def _check_output_dir(folder) -> Path:
-    """The output folder as a Path, refused (ValueError) when empty or inside the repository's ``figures/``."""
+def _check_output_dir(folder, name: str = "output folder") -> Path:
+    """The output folder as a Path, refused (ValueError) when empty or inside the repository's ``figures/``;
+    ``name``: the parameter (or the box, ``"output folder"``) it came from, for the messages."""
     if not str(folder).strip():
-        raise ValueError("no output folder given: type a folder in 'output folder'")
+        raise ValueError(f"no {name} given: type a folder in 'output folder'")
     path = Path(folder).expanduser()
     root = _repository_root()
     figures = (root if root is not None else Path.cwd()) / "figures"
     resolved = path.resolve()
     if resolved == figures.resolve() or figures.resolve() in resolved.parents:
-        raise ValueError(f"output folder {str(path)!r} is inside {figures}: only `make reproduce` writes figures/; "
+        raise ValueError(f"{name} {str(path)!r} is inside {figures}: only `make reproduce` writes figures/; "
                          "choose a folder under build/")
     return path
 
@@ -234,6 +236,21 @@ def _check_interactive(layers, max_tried: int) -> None:
 class MLTSExplorer(ExplorerBase):
     """Widgets and state of the Alvarez 2015 explorer (built by :func:`mlts_explorer`).
 
+    Parameters
+    ----------
+    random_seed : int
+        Seed of the first **random** draw (the next ones use the next integers).
+    max_tried : int
+        Largest number of objects one layer may try (product of Max_O down to it); bigger
+        scripts are refused with a message.
+    output_dir : str, Path or None
+        Folder of the **save PNG / SVG / JSON** buttons (default :func:`default_output_dir`, under
+        ``build/``; ``file_root`` when one is given); refused inside the repository's ``figures/``.
+    file_root : str, os.PathLike or None
+        None: the script path and output folder boxes name any path. A folder: they name only paths
+        inside it (relative paths from it), as a served app must (:mod:`paperlib.apps`); the upload
+        button reads scripts from the browser either way.
+
     Attributes
     ----------
     widget : ipywidgets.VBox
@@ -251,6 +268,8 @@ class MLTSExplorer(ExplorerBase):
     ipywidgets controls
         The :class:`paperlib.mlts.RenderSettings` fields.
     random_seed, random_button, path, save_button, load_button : ipywidgets controls
+    upload : ipywidgets.FileUpload
+        Loads a JSON script from the browser (the only way in for files outside ``file_root``).
     output_dir, output_name, save_png_button, save_svg_button, save_json_button : ipywidgets controls
         Where and under which name :meth:`export` writes the texture shown.
     exported : dict
@@ -279,16 +298,17 @@ class MLTSExplorer(ExplorerBase):
         How many structures were sampled and images rendered.
     """
 
-    def __init__(self, *, random_seed: int, max_tried: int, output_dir=None):
+    def __init__(self, *, random_seed: int, max_tried: int, output_dir=None, file_root=None):
         import ipywidgets as w
 
         _check_counts(random_seed=(random_seed, 0), max_tried=(max_tried, 1))
         if output_dir is not None:
             if not isinstance(output_dir, (str, Path)):
                 raise ValueError(f"output_dir must be a str, a Path or None, got {type(output_dir).__name__}")
-            _check_output_dir(output_dir)
-
-        self._output_dir = default_output_dir() if output_dir is None else Path(output_dir)
+        self._file_root = check_file_root(file_root)
+        if output_dir is None:
+            output_dir = default_output_dir() if self._file_root is None else self._file_root
+        self._output_dir = self._folder(output_dir, "output_dir")
         self.exported: dict = {}
 
         self._dpi = 100
@@ -368,6 +388,7 @@ class MLTSExplorer(ExplorerBase):
                            layout=w.Layout(width="340px"))
         self.save_button = w.Button(description="save script", icon="save")
         self.load_button = w.Button(description="load script", icon="folder-open")
+        self.upload = w.FileUpload(accept=".json", multiple=False, description="upload script")
         self.image = w.Image(format="png", layout=w.Layout(max_width="100%"))
         self.status = w.HTML()
         self.output_dir = w.Text(value=str(self._output_dir), description="output folder",
@@ -391,7 +412,8 @@ class MLTSExplorer(ExplorerBase):
                             self.tessellation, self.keep_father_inclusion, self.samples])
         self.tabs = w.Tab(children=[geometry, layer, rendering], titles=("geometry", "layer", "rendering"))
         self.widget = w.VBox([
-            w.HBox([self.random_seed, self.random_button, self.path, self.save_button, self.load_button]),
+            w.HBox([self.random_seed, self.random_button, self.path, self.save_button, self.load_button,
+                    self.upload]),
             w.HBox([self.tabs, w.VBox([self.image], layout=w.Layout(padding="0 0 0 12px"))]),
             w.HBox([self.output_dir, self.output_name, self.save_png_button, self.save_svg_button,
                     self.save_json_button]),
@@ -426,6 +448,7 @@ class MLTSExplorer(ExplorerBase):
         self.random_button.on_click(lambda _: self.randomize())
         self.save_button.on_click(lambda _: self.save())
         self.load_button.on_click(lambda _: self.load())
+        self.upload.observe(lambda _: self.load_upload(), names="value")
         self.save_png_button.on_click(lambda _: self.export("png"))
         self.save_svg_button.on_click(lambda _: self.export("svg"))
         self.save_json_button.on_click(lambda _: self.export("json"))
@@ -489,6 +512,11 @@ class MLTSExplorer(ExplorerBase):
     def controls_script(self) -> Script:
         """The script the controls describe.
 
+        Returns
+        -------
+        Script
+            The validated script of the current control values.
+
         Raises
         ------
         ValueError
@@ -524,6 +552,11 @@ class MLTSExplorer(ExplorerBase):
 
     def update(self, notes=()) -> bool:
         """Sample (or reuse) the structure of the controls' script and render it.
+
+        Parameters
+        ----------
+        notes : iterable of str, optional
+            Lines shown before the outcome in ``message``.
 
         Returns
         -------
@@ -584,6 +617,15 @@ class MLTSExplorer(ExplorerBase):
         If it cannot be rendered (an unreadable palette, too many objects), the message says why
         and the previous script's controls and image come back.
 
+        Parameters
+        ----------
+        script : Script
+            The script to show.
+        origin : str, default "script"
+            Where it came from, shown in the status and the figure title (``origin``).
+        notes : iterable of str, optional
+            Lines shown before the outcome in ``message``.
+
         Returns
         -------
         bool
@@ -641,6 +683,12 @@ class MLTSExplorer(ExplorerBase):
     def save(self, path=None) -> bool:
         """Write the controls' script as JSON to ``path`` (default: the ``path`` field).
 
+        Parameters
+        ----------
+        path : str or os.PathLike, optional
+            The JSON file to write (inside ``file_root`` when the explorer has one); default the
+            ``path`` field.
+
         Returns
         -------
         bool
@@ -648,9 +696,7 @@ class MLTSExplorer(ExplorerBase):
         """
         path = self.path.value if path is None else str(path)
         try:
-            if not str(path).strip():
-                raise ValueError("no path given: type a file name in 'script path'")
-            written = self.controls_script().save(path)
+            written = self.controls_script().save(user_path(path, self._file_root, "script path"))
         except (OSError, ValueError) as error:
             self.error, self.message = error, f"save failed: {error}"
             self._show_status()
@@ -662,6 +708,12 @@ class MLTSExplorer(ExplorerBase):
     def load(self, path=None) -> bool:
         """Read the JSON script at ``path`` (default: the ``path`` field) and show it.
 
+        Parameters
+        ----------
+        path : str or os.PathLike, optional
+            The JSON script to read (inside ``file_root`` when the explorer has one); default the
+            ``path`` field.
+
         Returns
         -------
         bool
@@ -669,15 +721,37 @@ class MLTSExplorer(ExplorerBase):
             leave the previous script in place.
         """
         path = self.path.value if path is None else str(path)
+        return self._load_script(lambda: Script.load(user_path(path, self._file_root, "script path")), path)
+
+    def load_upload(self) -> bool:
+        """Read the JSON script last chosen in the **upload script** button and show it (as :meth:`load`).
+
+        Returns
+        -------
+        bool
+            Whether it is shown (False, with nothing changed, when no file is chosen).
+        """
+        chosen = uploaded_file(self.upload)
+        if chosen is None:
+            return False
+        name, content = chosen
+        return self._load_script(lambda: Script.from_json(content.decode("utf-8", errors="replace")), name)
+
+    def _load_script(self, read, source: str) -> bool:
+        """Show the script ``read()`` returns; a failure is a message and keeps the previous script."""
         try:
-            if not str(path).strip():
-                raise ValueError("no path given: type a file name in 'script path'")
-            script = Script.load(path)
+            script = read()
         except (OSError, ValueError) as error:
             self.error, self.message = error, f"load failed: {error}\nthe previous script is kept"
             self._show_status()
             return False
-        return self.set_script(script, f"loaded from {path}", [f"script loaded from {path}"])
+        return self.set_script(script, f"loaded from {source}", [f"script loaded from {source}"])
+
+    def _folder(self, folder, name: str = "output folder") -> Path:
+        """The output folder typed (inside ``file_root`` when there is one), never under ``figures/``."""
+        if self._file_root is not None:
+            folder = user_path(folder, self._file_root, name)
+        return _check_output_dir(folder, name)
 
     def export(self, kind: str, folder=None, name=None) -> Path | None:
         """Save the texture shown as PNG, SVG or its JSON script in the output folder.
@@ -704,7 +778,7 @@ class MLTSExplorer(ExplorerBase):
                 raise ValueError(f"kind must be one of {EXPORT_FORMATS}, got {kind!r}")
             if self.script is None:
                 raise ValueError("no texture to save yet")
-            folder = _check_output_dir(self.output_dir.value if folder is None else folder)
+            folder = self._folder(self.output_dir.value if folder is None else folder)
             path = folder / f"{_check_stem(self.output_name.value if name is None else name)}.{kind}"
             if kind == "png":
                 from PIL import Image
@@ -727,7 +801,19 @@ class MLTSExplorer(ExplorerBase):
         return path
 
     def set_layer_count(self, count: int) -> bool:
-        """Set ``N_L`` (image rectangle included): add layers at the end or remove the last ones."""
+        """Set ``N_L`` (image rectangle included): add layers at the end or remove the last ones.
+
+        Parameters
+        ----------
+        count : int
+            The new ``N_L`` (>= 2).
+
+        Returns
+        -------
+        bool
+            Whether the image now shows the new layers (see :meth:`update`); False with a message for
+            ``count < 2``.
+        """
         count = int(count)
         if count < 2:
             self.error, self.message = ValueError("N_L must be >= 2"), "N_L must be >= 2 (the image and a layer)"
@@ -742,7 +828,13 @@ class MLTSExplorer(ExplorerBase):
 
     def add_layer(self) -> bool:
         """Insert a layer after the selected one (its texels and shape, 5 objects per father, a third
-        of its Max_D, inclusion on) and select it."""
+        of its Max_D, inclusion on) and select it.
+
+        Returns
+        -------
+        bool
+            Whether the image now shows the new script (see :meth:`update`).
+        """
         selected = int(self.layer.value)
         self._layer_values.insert(selected + 1, _new_layer_values(self._layer_values[selected]))
         self._refresh_layer_choices(selected + 1)
@@ -750,7 +842,14 @@ class MLTSExplorer(ExplorerBase):
         return self.update()
 
     def remove_layer(self) -> bool:
-        """Remove the selected layer (not the last one left: N_L >= 2)."""
+        """Remove the selected layer (not the last one left: N_L >= 2).
+
+        Returns
+        -------
+        bool
+            Whether the image now shows the new script (see :meth:`update`); False with a message
+            when only one layer is left.
+        """
         if len(self._layer_values) < 2:
             self.error = ValueError("cannot remove the only layer")
             self.message = "cannot remove the only layer: a texture needs N_L >= 2"
@@ -795,6 +894,23 @@ class MLTSExplorer(ExplorerBase):
         """A matplotlib figure of the current image (for notebooks), titled with the script's origin.
 
         By default one image pixel per figure pixel at 100 dpi.
+
+        Parameters
+        ----------
+        title : bool, default True
+            Add a title: the script's origin, object count, ``N_L`` and palette.
+        figsize : pair of float, optional
+            Figure size in inches (default: the image's size at 100 dpi, plus room for the title).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure (not attached to pyplot).
+
+        Raises
+        ------
+        ValueError
+            When no image has been rendered yet.
         """
         from matplotlib.figure import Figure
 
@@ -823,7 +939,7 @@ def _check_counts(**values) -> None:
 
 
 def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tried: int = MAX_TRIED,
-                  output_dir=None) -> MLTSExplorer:
+                  output_dir=None, file_root=None) -> MLTSExplorer:
     """An interactive explorer of Alvarez 2015's multi-layer texture sampler.
 
     Builds the controls, shows ``script`` and returns the explorer; ``display(explorer)`` (or
@@ -843,7 +959,11 @@ def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tri
         scripts are refused with a message.
     output_dir : str, Path or None
         Folder of the **save PNG / SVG / JSON** buttons (default :func:`default_output_dir`, under
-        ``build/``); refused inside the repository's ``figures/``.
+        ``build/``; ``file_root`` when one is given); refused inside the repository's ``figures/``.
+    file_root : str, os.PathLike or None
+        None: the script path and output folder boxes name any path. A folder: they name only paths
+        inside it (relative paths from it), as a served app must (:mod:`paperlib.apps`); the upload
+        button reads scripts from the browser either way.
 
     Returns
     -------
@@ -861,12 +981,14 @@ def mlts_explorer(script=None, *, size: int = 256, random_seed: int = 0, max_tri
     and 5.4 (rendering parameters).
     """
     _check_counts(size=(size, 1), random_seed=(random_seed, 0), max_tried=(max_tried, 1))
+    _pixels(int(size), "size")
     if script is None:
         script = default_script(int(size), int(size))
     elif isinstance(script, (str, Path)):
         script = Script.load(script)
     elif not isinstance(script, Script):
         raise ValueError(f"script must be a paperlib.mlts.Script, a path or None, got {type(script).__name__}")
-    explorer = MLTSExplorer(random_seed=int(random_seed), max_tried=int(max_tried), output_dir=output_dir)
+    explorer = MLTSExplorer(random_seed=int(random_seed), max_tried=int(max_tried), output_dir=output_dir,
+                            file_root=file_root)
     explorer.set_script(script, "initial script")
     return explorer

@@ -97,7 +97,7 @@ from functools import cache
 import numpy as np
 import shapely
 
-from paperlib._checks import integer_at_least, positive_number
+from paperlib._checks import check_choice, integer_at_least, positive_number
 from paperlib.datasets import coastlines, hand_drawn_curve, leaf_outlines
 from paperlib.geometry import drop_repeated_vertices, hausdorff, oriented_ccw, resample_closed_curve, signed_area
 from paperlib.sketch import coarsen, copied_runs, train
@@ -238,6 +238,39 @@ def _preset_sketch(name: str, model, class_name: str) -> np.ndarray:
 class SketchExplorer(CanvasDrawing, ExplorerBase):
     """Widgets and state of the Simhon 2001 explorer (built by :func:`sketch_explorer`).
 
+    Parameters
+    ----------
+    training : {"coastlines", "leaves"}
+        The training class: the 40 largest GSHHS coastlines (real) or 14 SYNTHETIC leaf outlines.
+    order : int
+        History O of a state, 1 to 40 (the paper: 20).
+    scales : int
+        Number of scales S, 1 to 7 (the paper: 5).
+    sigma : float
+        Standard deviation (radians) of eq. (5)'s Gaussian, 10**-2.5 to 10**0.5: the confidence in the sketch.
+    top : int
+        States kept by the threshold, 1 to 200.
+    mode : {"max", "sample"}
+        Instantiate the most probable state (the paper) or draw one (seeds then differ).
+    closure : {"turn", "distribute", "none"}
+        Close the elaboration by turning its segments (our correction, the default), by distributing its end
+        gap, or leave the gap (the paper); :func:`paperlib.sketch.elaborate`.
+    window : float, optional
+        Search window Delta t as a fraction of the curve, 0.01 to 0.5 (None: no window).
+    seed : int
+        Seed of ``mode="sample"`` (>= 0).
+    n_samples : int
+        Samples of the elaboration, 64 to 5000 (so always above ``order``).
+    preset : str, optional
+        The first sketch, one of :data:`PRESETS` (default: a held-out coarse coastline for ``coastlines``, the
+        held-out coarse leaf for ``leaves``).
+    figsize : pair of float
+        Figure size in inches.
+    dpi : int
+        Resolution of the figure shown in the widget (>= 10).
+    canvas_size : pair of int
+        Width and height of the drawing canvas, pixels (each at least 64).
+
     Attributes
     ----------
     widget : ipywidgets.VBox
@@ -354,10 +387,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         self._on_change(self.preset, self._on_preset)
         self.elaborate_button.on_click(lambda _: self.elaborate())
         self.clear_button.on_click(lambda _: self.clear_drawing())
-        self.canvas.on_mouse_down(self._on_mouse_down)
-        self.canvas.on_mouse_move(self._on_mouse_move)
-        self.canvas.on_mouse_up(self._on_mouse_up)
-        self.canvas.on_mouse_out(self._on_mouse_out)
+        self._connect_canvas()
 
     # ------------------------------------------------------------------ actions
 
@@ -439,6 +469,15 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
     def current_sketch(self) -> tuple[np.ndarray, str, list[str]]:
         """The sketch the controls describe, its label and notes on how a drawing was cleaned.
 
+        Returns
+        -------
+        sketch : ndarray of float64, shape (n, 2)
+            The sketch, in sketch units (a preset, or the cleaned drawing).
+        label : str
+            What the sketch is (``"preset: ..."`` or ``"drawing"``).
+        notes : list of str
+            How the drawing was cleaned (empty for a preset).
+
         Raises
         ------
         ValueError
@@ -453,7 +492,14 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         return sketch, "drawing", notes
 
     def elaboration_options(self) -> dict:
-        """The keyword arguments of :func:`paperlib.sketch.elaborate` the controls set (``rng`` included)."""
+        """The keyword arguments of :func:`paperlib.sketch.elaborate` the controls set (``rng`` included).
+
+        Returns
+        -------
+        dict
+            ``n_samples``, ``sigma``, ``top``, ``mode``, ``closure``, ``window`` (None when the window
+            is off) and ``rng`` (the seed).
+        """
         return dict(n_samples=int(self.samples.value), sigma=float(self.sigma.value), top=int(self.top.value),
                     mode=self.mode.value, closure=self.closure.value,
                     window=float(self.window.value) if self.use_window.value else None, rng=int(self.seed.value))
@@ -486,7 +532,18 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         return _class_curves(self.training.value)[2] / self.canvas.height
 
     def canvas_to_sketch(self, points) -> np.ndarray:
-        """Canvas pixels (x right, y down) to sketch units (x right, y up), ``(m, 2)``."""
+        """Canvas pixels (x right, y down) to sketch units (x right, y up), ``(m, 2)``.
+
+        Parameters
+        ----------
+        points : array_like, shape (m, 2)
+            Points in canvas pixels.
+
+        Returns
+        -------
+        ndarray of float64, shape (m, 2)
+            The points in sketch units.
+        """
         return self._pixels_to_units(points)
 
     def _drawing_finished(self) -> None:
@@ -496,7 +553,7 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         self._redraw_canvas()
         self.elaborate()
 
-    def _redraw_canvas(self) -> None:
+    def _draw_canvas(self) -> None:
         """Background, a hint with the canvas's scale, and the drawing (closed once released)."""
         from ipycanvas import hold_canvas
 
@@ -591,7 +648,13 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         return figure
 
     def draw_sketch(self, ax) -> None:
-        """Draw the sketch on matplotlib axes (its start marked); a refused drawing in red, dashed."""
+        """Draw the sketch on matplotlib axes (its start marked); a refused drawing in red, dashed.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes
+            The axes to draw on.
+        """
         if self.sketch is not None:
             ring = np.vstack([self.sketch, self.sketch[:1]])
             ax.plot(*ring.T, "-", color="0.15", lw=1.2)
@@ -608,7 +671,13 @@ class SketchExplorer(CanvasDrawing, ExplorerBase):
         ax.set_xlabel(CLASSES[self.training.value][1], fontsize=8)
 
     def draw_elaboration(self, ax) -> None:
-        """Draw the elaboration as a line over the sketch (dashed grey) on matplotlib axes."""
+        """Draw the elaboration as a line over the sketch (dashed grey) on matplotlib axes.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes
+            The axes to draw on.
+        """
         if self.elaboration is None:
             ax.text(0.5, 0.5, "no elaboration\n(see the message below)", ha="center", va="center",
                     transform=ax.transAxes, color="0.4")
@@ -629,23 +698,21 @@ def _checked_settings(training, order, scales, sigma, top, mode, closure, window
                       dpi, canvas_size) -> tuple:
     """The explorer's settings checked against the ranges of :func:`sketch_explorer` (a ValueError naming the
     parameter otherwise), ``preset=None`` replaced by the training class's default preset."""
-    if training not in CLASSES:
-        raise ValueError(f"unknown training class {training!r}; choose one of {', '.join(CLASSES)}")
+    if not isinstance(training, str) or training not in CLASSES:
+        raise ValueError(f"training: unknown training class {training!r:.80}; choose one of {', '.join(CLASSES)}")
     order = _integer_in(order, "order", ORDER_RANGE)
     scales = _integer_in(scales, "scales", SCALES_RANGE)
     sigma = _number_in(sigma, "sigma", 10 ** SIGMA_DECADES[0], 10 ** SIGMA_DECADES[1])
     top = _integer_in(top, "top", TOP_RANGE)
-    if mode not in ("max", "sample"):
-        raise ValueError(f"mode must be 'max' or 'sample', got {mode!r}")
-    if closure not in CLOSURES:
-        raise ValueError(f"closure must be one of {CLOSURES}, got {closure!r}")
+    check_choice(mode, ("max", "sample"), "mode")
+    check_choice(closure, CLOSURES, "closure")
     if window is not None:
         window = _number_in(window, "window", *WINDOW_RANGE)
     seed = integer_at_least(seed, "seed", 0)
     n_samples = _integer_in(n_samples, "n_samples", SAMPLES_RANGE)  # its least, 64, exceeds the largest order
     preset = DEFAULT_PRESET[training] if preset is None else preset
-    if preset not in PRESETS:
-        raise ValueError(f"unknown preset {preset!r}; choose one of {', '.join(PRESETS)}")
+    if not isinstance(preset, str) or preset not in PRESETS:
+        raise ValueError(f"preset: unknown preset {preset!r:.80}; choose one of {', '.join(PRESETS)}")
     dpi = integer_at_least(dpi, "dpi", 10)
     figsize = _pair(figsize, "figsize", positive_number)
     canvas_size = _pair(canvas_size, "canvas_size", lambda value, name: integer_at_least(value, name, 64))

@@ -67,7 +67,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from paperlib._checks import as_generator
+from paperlib._checks import as_generator, check_choice
 
 from paperlib import datasets
 from paperlib.widgets._base import ExplorerBase, figure_settings
@@ -228,6 +228,40 @@ def _single_tone_library(texture, *, size: int, iterations: int, rng) -> Stipple
 class StippleExplorer(ExplorerBase):
     """Widgets and state of the Kim 2009 explorer (built by :func:`stipple_explorer`).
 
+    Parameters
+    ----------
+    source : {"sheet", "texture"}
+        A synthetic tone-map sheet cut into tones by section 3.1, or one synthetic tone texture.
+    sheet_seed : int
+        Seed of the exemplar generator.
+    n_tones : int
+        Patches of the sheet, in [2, 10] (default 8, the inner tones of Andrews' map).
+    block : int
+        Side of a sheet patch or of the single texture, px: one of 128, 160, 192, 256.
+    tone : float
+        Ink fraction of the single texture, in [0.05, 0.95].
+    N, T1, T2 : int, float, float
+        Section 3.1's block side (in [8, 64]) and thresholds (in [0.005, 0.2]).
+    iterations : int
+        Maximum synthesis iterations, in [1, 30] (paper: 30).
+    tile : int
+        Side of the synthesized tiles, one of :data:`TILE_SIZES` (paper: 256).
+    seed : int
+        Seed of the synthesis and the rendering.
+    image : str
+        One of :data:`IMAGES`.
+    render_size : int
+        Longer side of the rendered image, in [64, 1024].
+    min_chunk : int
+        Chunks of fewer pixels are removed (Fig. 11), in [1, 50] (1: none).
+    workers : int
+        Processes learning the tones in parallel (:func:`learn_stipple_library`); the library does
+        not depend on it.
+    figsize : pair of float
+        Figure size in inches.
+    dpi : int
+        Resolution of the figure shown in the widget.
+
     Attributes
     ----------
     widget : ipywidgets.VBox
@@ -378,7 +412,14 @@ class StippleExplorer(ExplorerBase):
         return self._source_key()
 
     def learn_key(self) -> tuple:
-        """The parameters a library depends on (the library cache's key)."""
+        """The parameters a library depends on (the library cache's key).
+
+        Returns
+        -------
+        tuple
+            The source and tone-map controls (sheet seed, tones, block or tone, and N, T1, T2 for a
+            sheet), then tile size, iterations and seed.
+        """
         return self._tone_map_key() + (int(self.tile.value), int(self.iterations.value), int(self.seed.value))
 
     def _mark_stale(self):
@@ -645,5 +686,4 @@ def stipple_explorer(source: str = "sheet", *, sheet_seed: int = 0, n_tones: int
 
 
 def _check_choice(value, choices: tuple, name: str) -> None:
-    if isinstance(value, (np.ndarray, list, dict, set)) or value not in choices:
-        raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}; got {value!r}")
+    check_choice(value, choices, name)

@@ -94,6 +94,7 @@ from paperlib.datasets.strokepatterns import (
     two_hatchings_exemplar,
     wave_hatching_exemplar,
 )
+from paperlib.strokepattern.analysis import check_dimension
 from paperlib.strokepattern import (
     analyze,
     exchange_parameters,
@@ -240,8 +241,7 @@ def drawn_target(points, dimension: int):
     ----------
     Barla et al. 2006, section 3.2 (targets: a path or a region).
     """
-    if dimension not in (1, 2):
-        raise ValueError(f"dimension must be 1 (a path) or 2 (a region), got {dimension!r}")
+    check_dimension(dimension)
     array = np.asarray(points, dtype=np.float64)
     if array.size == 0:
         raise ValueError("nothing drawn yet: press, drag and release the mouse on the canvas")
@@ -299,6 +299,34 @@ def _outline_parts(region) -> list:
 
 class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
     """Widgets and state of the Barla 2006 explorer (built by :func:`strokepattern_explorer`).
+
+    Parameters
+    ----------
+    exemplar : str
+        One of :data:`EXEMPLARS`: ``sketchy_hatching``, ``jittered_hatching``, ``gradient_orientation``,
+        ``gradient_length``, ``gradient_thickness``, ``alternating_color`` (1D); ``bars``, ``drops``,
+        ``flowers``, ``two_hatchings``, ``irregular`` (2D).
+    exemplar_seed : int
+        Seed of the exemplar generator (>= 0).
+    contour : bool
+        Fit element boxes on the pen's contour (section 2.1) instead of the skeleton.
+    rings : int
+        k of the k-ring neighbourhoods, 1 to 5.
+    amount : float
+        Parameter-exchange amount in [0, 1] (section 3.3; 0: none).
+    vary : bool
+        Apply the position variation (section 3.3).
+    choice : {"close", "random", "best"}
+        Among the matching reference neighbourhoods: a random one within a tenth of a threshold of the best
+        (default, Efros and Leung's rule), a random one (the paper) or the best scored.
+    seed : int
+        Seed of the synthesis (>= 0); same seed, same strokes.
+    figsize : pair of float
+        Figure size in inches.
+    dpi : int
+        Resolution of the figure shown in the widget.
+    canvas_size : pair of int
+        Width and height of the drawing canvas, pixels (each at least 64).
 
     Attributes
     ----------
@@ -426,10 +454,7 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         on(self.preset, self._on_preset)
         self.synthesize_button.on_click(lambda _: self.synthesize())
         self.clear_button.on_click(lambda _: self.clear_drawing())
-        self.canvas.on_mouse_down(self._on_mouse_down)
-        self.canvas.on_mouse_move(self._on_mouse_move)
-        self.canvas.on_mouse_up(self._on_mouse_up)
-        self.canvas.on_mouse_out(self._on_mouse_out)
+        self._connect_canvas()
 
     # ------------------------------------------------------------------ actions
 
@@ -631,7 +656,18 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         return math.sqrt(extent) / (_CANVAS_SQUARE_SPAN * self.canvas.height)
 
     def canvas_to_pattern(self, points) -> np.ndarray:
-        """Canvas pixels (x right, y down) to pattern units (x right, y up), ``(m, 2)``."""
+        """Canvas pixels (x right, y down) to pattern units (x right, y up), ``(m, 2)``.
+
+        Parameters
+        ----------
+        points : array_like, shape (m, 2)
+            Points in canvas pixels.
+
+        Returns
+        -------
+        ndarray of float64, shape (m, 2)
+            The points in pattern units.
+        """
         return self._pixels_to_units(points)
 
     def _drawing_finished(self) -> None:
@@ -640,7 +676,7 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
             self.target_mode.value = "draw"
         self.synthesize()
 
-    def _redraw_canvas(self) -> None:
+    def _draw_canvas(self) -> None:
         """Background, the reference's size for scale, a hint, and the drawing (closed in 2D)."""
         from ipycanvas import hold_canvas
 
@@ -734,7 +770,13 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
         return figure
 
     def draw_reference(self, ax) -> None:
-        """Draw the analysed reference on matplotlib axes: strokes coloured by element, boxes, neighbour graph."""
+        """Draw the analysed reference on matplotlib axes: strokes coloured by element, boxes, neighbour graph.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes
+            The axes to draw on.
+        """
         pattern, analysis = self.pattern, self.analysis
         epsilon = float(self.epsilon.value)
         if analysis is None:
@@ -750,7 +792,13 @@ class StrokePatternExplorer(CanvasDrawing, ExplorerBase):
                      f"(truth {pattern.n_elements})", fontsize=10)
 
     def draw_synthesis(self, ax) -> None:
-        """Draw the latest synthesis on matplotlib axes, with the target outline and the fallback elements."""
+        """Draw the latest synthesis on matplotlib axes, with the target outline and the fallback elements.
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes
+            The axes to draw on.
+        """
         synthesis = self.synthesis
         if synthesis is None:
             ax.text(0.5, 0.5, "no synthesis\n(see the message below)", ha="center", va="center",
