@@ -11,6 +11,7 @@ from .curves import (
     resample_open_curve,
     ring_centroid,
     signed_area,
+    turning_angles,
 )
 from .hausdorff import directed_hausdorff, directed_hausdorff_boxes, hausdorff, hausdorff_boxes
 from .strokes import Element, StackedStrokes, Stroke, as_elements, as_points, stack_strokes
@@ -41,5 +42,6 @@ __all__ = [
     "signed_area",
     "stack_strokes",
     "svg_string",
+    "turning_angles",
     "write_svg",
 ]

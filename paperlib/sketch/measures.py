@@ -23,9 +23,8 @@ from numbers import Real
 import numpy as np
 from scipy.stats import ks_2samp
 
-from .._checks import check_flag
-from ..geometry import as_points, hausdorff
-from .curves import tangent_angles, total_turning
+from .._checks import check_flag, float_array
+from ..geometry import as_points, hausdorff, turning_angles
 
 __all__ = ["box_counting_dimension", "curve_hausdorff", "densify", "turning_ks", "turning_per_sample"]
 
@@ -35,6 +34,7 @@ BOX_FRACTIONS = (1 / 4, 1 / 8, 1 / 16, 1 / 32)
 
 
 def _polyline(points, closed: bool, name: str) -> np.ndarray:
+    closed = check_flag(closed, "closed")
     points = as_points(points, name=name)
     if len(points) < 2:
         raise ValueError(f"{name} needs at least 2 points, got {len(points)}")
@@ -42,7 +42,23 @@ def _polyline(points, closed: bool, name: str) -> np.ndarray:
 
 
 def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
-    """The polyline's vertices plus points every ``spacing`` (at most) along each of its segments."""
+    """The polyline's vertices plus points every ``spacing`` (at most) along each of its segments.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The polyline's vertices (finite, at least 2); a closed ring without its first point repeated.
+    closed : bool
+        Whether the last vertex joins the first.
+    spacing : float
+        Largest distance between consecutive output points (> 0).
+
+    Returns
+    -------
+    ndarray of float64, shape (m, 2)
+        The vertices and the points between them, in order; for a closed ring the first vertex is not
+        repeated at the end, for an open polyline the last vertex ends it.
+    """
     closed = check_flag(closed, "closed")
     if not isinstance(spacing, Real) or not spacing > 0:
         raise ValueError(f"spacing must be positive, got {spacing!r:.60}")
@@ -60,10 +76,30 @@ def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None) -> f
 
     Both polylines are densified to ``resolution`` (default: a hundredth of the smaller of their two mean
     segment lengths), so the result is the distance between the curves within ``resolution``.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (n, 2)
+        The two curves' vertices (finite, at least 2 each), closed curves without a repeated end point.
+    closed : bool
+        Whether both curves are closed rings.
+    resolution : float, optional
+        Spacing the curves are densified to, in their units (> 0).
+
+    Returns
+    -------
+    float
+        The Hausdorff distance between the densified curves, in the curves' units.
     """
     a, b = _polyline(a, closed, "a"), _polyline(b, closed, "b")
     if resolution is None:
-        resolution = 0.01 * min(np.hypot(*np.diff(c, axis=0).T).mean() for c in (a, b))
+        means = [float(np.hypot(*np.diff(c, axis=0).T).mean()) for c in (a, b)]
+        resolution = 0.01 * min(means)
+        if not resolution > 0:
+            raise ValueError(f"{'a' if means[0] == 0 else 'b'} has zero length (all its points coincide): the "
+                             f"default resolution is undefined; pass resolution= explicitly")
+    elif not isinstance(resolution, Real) or not resolution > 0:
+        raise ValueError(f"resolution must be a positive number or None, got {resolution!r:.60}")
     kept = slice(None, -1) if closed else slice(None)
     return hausdorff(densify(a[kept], closed=closed, spacing=resolution),
                      densify(b[kept], closed=closed, spacing=resolution))
@@ -74,15 +110,38 @@ def turning_per_sample(points, *, closed: bool) -> np.ndarray:
 
     A closed curve of ``n`` samples has ``n`` turnings, the closing turn included (they sum to its total
     turning); an open one ``n - 2``.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The curve's samples (finite, no two consecutive equal); a closed curve without its first
+        point repeated.
+    closed : bool
+        Whether the last sample joins the first.
+
+    Returns
+    -------
+    ndarray of float64, shape (n,) or (n - 2,)
+        The turnings in radians, ``n`` for a closed curve and ``n - 2`` for an open one: the
+        exterior angles of :func:`paperlib.geometry.turning_angles`, which are the differences of
+        section 3.1's tangent angles.
     """
-    theta = tangent_angles(as_points(points, name="points"), closed=closed)
-    if closed:
-        return np.diff(theta, append=theta[0] + total_turning(theta))
-    return np.diff(theta)
+    return turning_angles(points, closed=closed)
 
 
 def turning_ks(a, b) -> float:
-    """Two-sample Kolmogorov-Smirnov distance between two sets of turnings (0: same distribution, 1: disjoint)."""
+    """Two-sample Kolmogorov-Smirnov distance between two sets of turnings (0: same distribution, 1: disjoint).
+
+    Parameters
+    ----------
+    a, b : array_like
+        The two sets of turnings, radians (finite, non-empty; flattened).
+
+    Returns
+    -------
+    float
+        The two-sample Kolmogorov-Smirnov statistic, in [0, 1].
+    """
     try:
         a, b = (np.asarray(x, dtype=np.float64).ravel() for x in (a, b))
     except (TypeError, ValueError, OverflowError):
@@ -100,14 +159,29 @@ def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS) -> 
     ``fractions`` of the curve's larger side; the curve is densified to an eighth of the smallest box so
     that every cell a segment crosses is counted. 1 for a smooth curve, towards 2 for a space-filling one;
     the answer depends on the box sizes, so compare curves at the same sizes and the same sampling.
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2)
+        The curve's vertices (finite, at least 2, not all one point); a closed curve without its
+        first point repeated.
+    closed : bool
+        Whether the last vertex joins the first.
+    fractions : sequence of float, default (1/4, 1/8, 1/16, 1/32)
+        Box sides as fractions of the curve's larger bounding-box side, at least two, each in (0, 1).
+
+    Returns
+    -------
+    float
+        The least-squares slope of ``log N(eps)`` against ``log(1 / eps)``.
     """
-    fractions = np.asarray(fractions, dtype=np.float64)
+    fractions = float_array(fractions, "fractions", "at least two box sizes in (0, 1)")
     if fractions.ndim != 1 or fractions.size < 2 or np.any(fractions <= 0) or np.any(fractions >= 1):
         raise ValueError("fractions must hold at least two box sizes in (0, 1)")
     polyline = _polyline(points, closed, "points")
     side = float(np.ptp(polyline, axis=0).max())
     if side == 0:
-        raise ValueError("the curve is a single point")
+        raise ValueError("points: the curve is a single point (all its points coincide)")
     dense = densify(polyline[:-1] if closed else polyline, closed=closed, spacing=fractions.min() * side / 8)
     origin = dense.min(axis=0)
     counts = [len(np.unique(np.floor((dense - origin) / (f * side)).astype(np.int64), axis=0)) for f in fractions]
