@@ -84,7 +84,19 @@ class Layout:
 
 @dataclass(frozen=True)
 class NotebookRun:
-    """Outcome of one notebook execution."""
+    """Outcome of one notebook execution.
+
+    Parameters
+    ----------
+    notebook : str
+        The notebook's stem.
+    ok : bool
+        Whether it ran to the end and wrote its ``stats.json``.
+    seconds : float
+        Wall time of the execution, in seconds.
+    error : str, default ""
+        Why it failed (the first line of the error), empty on success.
+    """
 
     notebook: str
     ok: bool
@@ -92,11 +104,24 @@ class NotebookRun:
     error: str = ""
 
 
-def find_notebooks(notebooks_dir, pattern: str | None = None) -> list[Path]:
+def find_notebooks(notebooks_dir, pattern=None) -> list[Path]:
     """The notebooks in ``notebooks_dir`` whose stem matches ``pattern``, sorted.
 
     ``pattern`` is a shell glob on the stem (``"kim2009_*"``); without wildcards it
     matches as a substring (``"fig07"``).
+
+    Parameters
+    ----------
+    notebooks_dir : str or os.PathLike
+        The folder holding the ``.ipynb`` files.
+    pattern : str or sequence of str, optional
+        Shell glob on the stem, or a substring when it has no wildcard; all notebooks when
+        None or empty. A sequence selects the notebooks any of its patterns matches.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The matching notebooks, sorted by path.
 
     Raises
     ------
@@ -104,20 +129,36 @@ def find_notebooks(notebooks_dir, pattern: str | None = None) -> list[Path]:
         When no notebook matches, naming the pattern and the available notebooks.
     """
     instance_of(notebooks_dir, (str, os.PathLike), "notebooks_dir")
-    if pattern is not None:
-        instance_of(pattern, str, "pattern")
+    patterns = [] if pattern is None else [pattern] if isinstance(pattern, str) else pattern
+    instance_of(patterns, (list, tuple), "pattern")
+    for each in patterns:
+        instance_of(each, str, "pattern")
     notebooks = sorted(Path(notebooks_dir).glob("*.ipynb"))
-    if pattern:
-        glob = pattern if any(char in pattern for char in "*?[") else f"*{pattern}*"
-        notebooks = [path for path in notebooks if fnmatch.fnmatchcase(path.stem, glob)]
+    globs = [each if any(char in each for char in "*?[") else f"*{each}*" for each in patterns if each]
+    if globs:
+        notebooks = [path for path in notebooks if any(fnmatch.fnmatchcase(path.stem, glob) for glob in globs)]
     if not notebooks:
         available = ", ".join(path.stem for path in sorted(Path(notebooks_dir).glob("*.ipynb"))) or "none"
-        raise ValueError(f"no notebook in {notebooks_dir} matches {pattern!r} (available: {available})")
+        raise ValueError(f"no notebook in notebooks_dir={str(notebooks_dir)!r:.120} matches pattern={pattern!r:.80} "
+                         f"(available: {available})")
     return notebooks
 
 
 def paper_and_figure(stem: str) -> tuple[str, str]:
-    """``("kim2009", "fig07")`` for ``kim2009_fig07_examples``; ``("", "")`` otherwise."""
+    """``("kim2009", "fig07")`` for ``kim2009_fig07_examples``; ``("", "")`` otherwise.
+
+    Parameters
+    ----------
+    stem : str
+        A notebook's stem, ``<paper><year>_figNN_<topic>``.
+
+    Returns
+    -------
+    paper : str
+        The paper's key (one of ``PAPERS``), or ``""`` when the stem names no known paper.
+    figure : str
+        The ``figNN`` part, or ``""`` when there is none.
+    """
     parts = instance_of(stem, str, "stem").split("_")
     if parts[0] in PAPERS:
         figure = parts[1] if len(parts) > 2 and parts[1].startswith("fig") else ""
@@ -240,8 +281,8 @@ def reproduce(root=".", *, quality="paper", only=None, jobs=1, seed=None, timeou
     root : str or Path
         Project root (``notebooks/``, ``tests/expected_stats.toml``).
     quality : {"ci", "paper"}
-    only : str, optional
-        Glob or substring selecting notebooks (see :func:`find_notebooks`).
+    only : str or sequence of str, optional
+        Glob or substring selecting notebooks, or several (see :func:`find_notebooks`).
     jobs : int
         Notebooks run in parallel processes (through :func:`paperlib.parallel.run_many`).
     seed : int, optional
@@ -370,6 +411,22 @@ def write_index(layout: Layout, stems, expected: dict) -> Path:
     paper and per notebook), the run quality of each notebook, the expected failures
     (paper claims we miss) in one list, and links to the ledgers; then each notebook's
     files and statistics.
+
+    Parameters
+    ----------
+    layout : Layout
+        The project's folders (:meth:`Layout.of`); the index and ledgers go in
+        ``layout.figures``.
+    stems : list or tuple of str
+        The notebook stems to index, in the order of their sections.
+    expected : dict
+        The expected statistics, ``{notebook: {statistic: spec}}``
+        (:func:`paperlib.repro.load_expected`).
+
+    Returns
+    -------
+    pathlib.Path
+        The index written, ``layout.figures / "INDEX.md"``.
     """
     instance_of(layout, Layout, "layout")
     instance_of(expected, dict, "expected")
@@ -489,14 +546,36 @@ def _notebook_section(layout: Layout, stem: str, rows: pd.DataFrame) -> list[str
         f"- notebook: [`notebooks/{stem}.ipynb`](../notebooks/{stem}.ipynb)",
         "- files: " + (", ".join(f"[{name}]({stem}/{name})" for name in files) or "none yet"),
         "",
-        "| statistic | value | expected | tolerance | kind | status | source |",
-        "|---|---|---|---|---|---|---|",
+        *statistics_table(rows),
     ]
+    return lines + [""]
+
+
+def statistics_table(rows: pd.DataFrame) -> list[str]:
+    """A Markdown table of checked statistics: value, expected bound, tolerance, kind, status and source.
+
+    The table of each notebook's section of ``figures/INDEX.md``, also shown on the notebook's page of the
+    documentation site (``docs/generate.py``). A status other than pass, xfail, shown or skipped is followed
+    by its reason; a ``|`` inside a cell is escaped so that the table keeps its columns.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Rows of :func:`paperlib.repro.check_stats` (columns ``statistic``, ``value``, ``expected``,
+        ``tolerance``, ``kind``, ``status``, ``reason``, ``source``), usually one notebook's.
+
+    Returns
+    -------
+    list of str
+        The header, the separator and one line per row.
+    """
+    instance_of(rows, pd.DataFrame, "rows")
+    lines = ["| statistic | value | expected | tolerance | kind | status | source |", "|---|---|---|---|---|---|---|"]
     for row in rows.itertuples():
         status = row.status if row.status in repro.OK_STATUSES else f"{row.status}: {row.reason}"
-        lines.append(f"| {row.statistic} | {_value_text(row.value)} | {row.expected} | {row.tolerance} | "
-                     f"{row.kind} | {status} | {row.source} |")
-    return lines + [""]
+        cells = [row.statistic, _value_text(row.value), row.expected, row.tolerance, row.kind, status, row.source]
+        lines.append("| " + " | ".join(str(cell).replace("|", "\\|").replace("\n", " ") for cell in cells) + " |")
+    return lines
 
 
 def format_summary(runs, table: pd.DataFrame) -> str:

@@ -132,7 +132,7 @@ def test_dask_local_cluster_gives_the_same_results(dask_client):
 
 @pytest.mark.dask
 def test_dask_envelopes_are_bit_identical_to_local_runs(dask_client):
-    """What the README promises: an envelope computed on a cluster equals the local one bit for bit."""
+    """What docs/scale_out.md promises: an envelope computed on a cluster equals the local one bit for bit."""
     from paperlib.pointprocess import Lest, MultiStraussHard, Window, envelope, rmh
 
     window = Window.rectangle((0, 1), (0, 1))

@@ -260,7 +260,7 @@ def test_one_notebook_shows_its_cells_several_show_notebooks(project, capfd):
 
 @pytest.mark.dask
 def test_reproduce_on_a_dask_cluster_publishes_like_a_local_run(project):
-    """`reproduce(client=...)` (README, "Scale out with Dask"): workers sharing the folder run the notebooks."""
+    """`reproduce(client=...)` (docs/scale_out.md, "Scale out with Dask"): workers sharing the folder run the notebooks."""
     from paperlib.reproduce import reproduce
 
     distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed (pip install -e .[dask])")
