@@ -151,29 +151,41 @@ def _environment(variables):
                 os.environ[name] = value
 
 
-def run_all(tmp_path_factory, name, environment=None):
+def selected_stems(request, *tests) -> list[str]:
+    """The notebooks of the selected items of ``tests``: ``pytest -k kim2009`` runs only those notebooks."""
+    return sorted({item.callspec.params["stem"] for item in request.session.items
+                   if getattr(item, "originalname", None) in tests})
+
+
+def run_all(tmp_path_factory, name, stems, environment=None):
     folder = tmp_path_factory.mktemp(name)
+    # "[k]im2009_..." is a glob matching that one stem (a plain stem would match as a substring)
+    exact = [f"[{stem[0]}]{stem[1:]}" for stem in stems]
     with _environment(environment or {}):
         runs, _table = reproduce(
-            ROOT, quality="ci", jobs=2, timeout=CELL_TIMEOUT, progress=False,
+            ROOT, quality="ci", only=exact, jobs=2, timeout=CELL_TIMEOUT, progress=False,
             figures_dir=folder / "figures", build_dir=folder / "build",
         )
     return {run.notebook: run for run in runs}, folder / "figures"
 
 
-@pytest.fixture(scope="session")
-def first_run(tmp_path_factory):
-    return run_all(tmp_path_factory, "first")
+FIRST_RUN_TESTS = ("test_notebook_runs_and_statistics_are_within_tolerance", "test_same_seed_same_statistics")
 
 
 @pytest.fixture(scope="session")
-def second_run(tmp_path_factory):
-    return run_all(tmp_path_factory, "second")
+def first_run(request, tmp_path_factory):
+    return run_all(tmp_path_factory, "first", selected_stems(request, *FIRST_RUN_TESTS))
 
 
 @pytest.fixture(scope="session")
-def second_target_run(tmp_path_factory):
-    return run_all(tmp_path_factory, "second-target", SECOND_TARGET)
+def second_run(request, tmp_path_factory):
+    return run_all(tmp_path_factory, "second", selected_stems(request, "test_same_seed_same_statistics"))
+
+
+@pytest.fixture(scope="session")
+def second_target_run(request, tmp_path_factory):
+    stems = selected_stems(request, "test_statistics_hold_under_a_second_code_generation_target")
+    return run_all(tmp_path_factory, "second-target", stems, SECOND_TARGET)
 
 
 def _assert_within_tolerance(run, stem):
