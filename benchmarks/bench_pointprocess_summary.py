@@ -17,7 +17,7 @@ from paperlib.pointprocess import PointPattern, Window
 from paperlib.pointprocess.summary import Lest, default_r
 from registry import benchmark
 
-SIZES = [10_000, 100_000]
+SIZES = [1_000, 10_000, 100_000]
 _ORACLE = Path(__file__).resolve().parent.parent / "tests" / "oracle" / "summary.json"
 _SPATSTAT_SECONDS = json.loads(_ORACLE.read_text())["timings"]
 
