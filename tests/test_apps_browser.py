@@ -14,13 +14,13 @@ Playwright's own browser download is not available here: the test uses the syste
 from __future__ import annotations
 
 import math
-import shutil
 import socket
 import subprocess
 import time
 from pathlib import Path
 
 import pytest
+from browser_support import chromium_executable
 
 from paperlib import apps
 
@@ -46,15 +46,6 @@ IMAGE_DIGEST = """async (img) => {
 }"""
 
 
-def _chromium() -> str:
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        found = shutil.which(name)
-        if found:
-            return found
-    pytest.skip("no Chromium on this machine: install Debian's `chromium` (apt-get install chromium; .ci/run "
-                "does) to run the browser tests")
-
-
 def _free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
@@ -77,7 +68,7 @@ def _wait_for_port(port: int, process: subprocess.Popen, timeout: float = 120.0)
 @pytest.fixture(scope="module")
 def browser():
     playwright_api = pytest.importorskip("playwright.sync_api", reason="playwright is in the test extra")
-    executable = _chromium()
+    executable = chromium_executable("run the browser tests")
     with playwright_api.sync_playwright() as playwright:
         # --no-sandbox: CI runs as root, where Chromium refuses its sandbox
         launched = playwright.chromium.launch(executable_path=executable, args=["--no-sandbox"])

@@ -14,7 +14,6 @@ notebook sources otherwise; :func:`test_a_page_without_executed_copy_says_so` ch
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -22,6 +21,7 @@ from pathlib import Path
 
 import nbformat
 import pytest
+from browser_support import chromium_executable
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
@@ -153,20 +153,11 @@ def test_a_page_without_executed_copy_says_so(tmp_path):
         assert (tmp_path / "_generated" / "figures" / BROWSED / figure.name).is_file()
 
 
-def _chromium() -> str:
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        found = shutil.which(name)
-        if found:
-            return found
-    pytest.skip("no Chromium on this machine: install Debian's `chromium` (apt-get install chromium; .ci/run "
-                "does) to open the built site in a browser")
-
-
 @pytest.mark.browser
 @pytest.mark.parametrize("page", ["index.html", f"_generated/notebooks/{BROWSED}.html"])
 def test_pages_load_their_figures_in_chromium(site, page):
     playwright_api = pytest.importorskip("playwright.sync_api", reason="playwright is in the test extra")
-    executable = _chromium()
+    executable = chromium_executable("open the built site in a browser")
     requests, errors = [], []
     with playwright_api.sync_playwright() as playwright:
         # --no-sandbox: CI runs as root, where Chromium refuses its sandbox
