@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import tracemalloc
+
 import numpy as np
 import pytest
 from scipy.ndimage import gaussian_filter
 from skimage.measure import label
+from skimage.morphology import remove_small_holes, remove_small_objects
 
+from paperlib.stipple import rendering
 from paperlib.datasets.stipple import stipple_tone_texture
 from paperlib.stipple.extraction import Mark, extract_distribution, extract_marks
 from paperlib.stipple.rendering import (
@@ -257,7 +261,86 @@ def test_chunk_removal_matches_label_oracle():
     assert np.array_equal(remove_small_chunks(image, 1).image, image)
 
 
+def whole_image_chunk_removal(image, min_size, connectivity):
+    """Step 5 on the whole image at once, as the rendering did before it worked in bands."""
+    no_specks = remove_small_objects(image, connectivity=connectivity, max_size=min_size - 1)
+    cleaned = remove_small_holes(no_specks, connectivity=connectivity, max_size=min_size - 1)
+    return cleaned, int(np.count_nonzero(image & ~no_specks)), int(np.count_nonzero(cleaned & ~no_specks))
+
+
+@pytest.mark.parametrize("connectivity", [1, 2])
+@pytest.mark.parametrize("min_size", [2, 3, 6, 13])
+def test_chunk_removal_in_bands_equals_the_whole_image(monkeypatch, min_size, connectivity):
+    """Bands of 3 rows with halos (chunks taller than a band, crossing several) give the whole-image result."""
+    rng = np.random.default_rng(min_size)
+    image = rng.random((61, 37)) < 0.45
+    image[20:40, 5] = True  # a thin ink line crossing many bands
+    image[10:30, 20] = False  # and a paper one
+    expected, ink, paper = whole_image_chunk_removal(image, min_size, connectivity)
+    monkeypatch.setattr(rendering, "CHUNK_BAND_PIXELS", 3 * image.shape[1])
+    result = remove_small_chunks(image, min_size, connectivity=connectivity)
+    np.testing.assert_array_equal(result.image, expected)
+    assert (result.removed_ink, result.removed_paper) == (ink, paper)
+    assert ink > 0 and paper > 0
+
+
 # ---------------------------------------------------------------- whole rendering
+
+
+def straightforward_rendering(image, tiles, libraries, grays, min_chunk, rng):
+    """Steps 2-5 with the public functions and whole-image arrays (int64 level map, no bands)."""
+    rng = np.random.default_rng(rng)
+    tone_index = select_tones(image, grays, rng)
+    distribution = distribution_image(tone_index, tiles, rng)
+    stippled = place_marks(distribution, tone_index, libraries, rng)
+    cleaned, ink, paper = whole_image_chunk_removal(stippled, min_chunk, 2)
+    return tone_index, distribution, cleaned, ink, paper
+
+
+def test_rendering_equals_the_straightforward_steps(monkeypatch, tone_set, grays):
+    """Bit for bit, with the level map in int8 and the chunk removal in bands of 5 rows."""
+    image = np.clip(np.add.outer(np.linspace(-0.1, 0.6, 150), np.linspace(0.0, 0.5, 170)), 0, 1)
+    expected = straightforward_rendering(image, *tone_set, grays, 4, 5)
+    monkeypatch.setattr(rendering, "CHUNK_BAND_PIXELS", 5 * image.shape[1])
+    result = render_stippling(image, *tone_set, tone_grays=grays, min_chunk=4, rng=5)
+    assert result.tone_index.dtype == np.int8
+    np.testing.assert_array_equal(result.tone_index, expected[0])
+    np.testing.assert_array_equal(result.distribution, expected[1])
+    np.testing.assert_array_equal(result.image, expected[2])
+    assert (result.removed_ink, result.removed_paper) == expected[3:]
+    assert expected[3] > 0 and expected[4] > 0
+
+
+def test_distribution_image_reads_any_integer_level_map(tone_set):
+    tiles, _ = tone_set
+    index = np.random.default_rng(3).integers(0, len(tiles) + 2, size=(300, 200))
+    wide = distribution_image(index, tiles, rng=4)
+    np.testing.assert_array_equal(distribution_image(index.astype(np.int8), tiles, rng=4), wide)
+    for dtype in (np.uint8, np.uint16, np.int32, np.uint64):
+        np.testing.assert_array_equal(distribution_image(index.astype(dtype), tiles, rng=4), wide)
+    assert not wide[(index == 0) | (index == len(tiles) + 1)].any()
+
+
+def test_rendering_peak_memory_is_a_few_bytes_per_pixel(monkeypatch, tone_set, grays):
+    """tracemalloc peak of a 1024 x 1024 rendering with 64 Ki-pixel bands: <= 7 bytes per pixel.
+
+    The result holds three one-byte images (stipples, level map, distribution); the canvas of
+    the marks is a fourth until the chunk removal has copied it. Before the bands and the int8
+    level map it was 25 bytes per pixel (int64 level map, whole-image labels).
+    """
+    image = np.tile(np.linspace(0.0, 1.0, 1024), (1024, 1))
+    monkeypatch.setattr(rendering, "SELECTION_BAND_PIXELS", 1 << 16)
+    monkeypatch.setattr(rendering, "CHUNK_BAND_PIXELS", 1 << 16)
+    tracemalloc.start()
+    try:
+        before, _ = tracemalloc.get_traced_memory()
+        tracemalloc.reset_peak()
+        result = render_stippling(image, *tone_set, tone_grays=grays, min_chunk=3, rng=1)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert result.image.any()
+    assert (peak - before) / image.size <= 7.0
 
 
 def test_blurred_rendering_tracks_gradient(tone_set, grays):

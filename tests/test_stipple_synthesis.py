@@ -4,16 +4,38 @@ import numpy as np
 import pytest
 
 from paperlib.datasets import stipple_tone_texture
-from paperlib.stipple.glcm import ace, cooccurrence_counts, normalized_glcms, offset_directions, pair_totals, paper_offsets
+from paperlib.stipple.glcm import (
+    _offset_error_change,
+    ace,
+    cooccurrence_counts,
+    flip_update_kernel,
+    normalized_glcms,
+    offset_directions,
+    pair_totals,
+    paper_offsets,
+)
 from paperlib.stipple.spacing import compare_spacing
 from paperlib.stipple.synthesis import (
     StippleGeometry,
+    _decision_margin,
+    _fast_flip_decision,
+    _fill_change_table,
+    _fill_prefix_sums,
+    _flip_lowers_error,
+    _line_decision,
+    _mark_considered,
+    _mark_stipple_regions,
+    _paper_block_length,
+    _set_line_pixel,
     _spin_flip_pass,
     _stipple_radius,
     paper_radius_quantiles,
     stipple_geometry,
     synthesize_distribution,
 )
+
+#: Offsets that are not the paper's three blocks: the pass takes its generic fast test.
+GENERIC_OFFSETS = np.array([[0, 1], [1, 0], [1, 1], [2, -1], [0, 3], [3, 2]], dtype=np.int64)
 
 
 @pytest.fixture(scope="module")
@@ -125,12 +147,13 @@ def reference_pass(texture, offsets, target, groups, order, uniforms, quantiles,
     return texture, regions
 
 
+@pytest.mark.parametrize("paper", [True, False])
 @pytest.mark.parametrize("every_direction", [False, True])
 @pytest.mark.parametrize("fixed_radius", [-1.0, 0.0, 1.5])
-def test_spin_flip_pass_matches_python_reference(fixed_radius, every_direction):
+def test_spin_flip_pass_matches_python_reference(fixed_radius, every_direction, paper):
     example = np.random.default_rng(0).random((12, 12)) < 0.2
     seed = np.random.default_rng(1).random((12, 12)) < 0.05
-    offsets = paper_offsets(5)
+    offsets = paper_offsets(5) if paper else GENERIC_OFFSETS
     groups = offset_directions(offsets) if every_direction else np.zeros(len(offsets), dtype=np.int64)
     target = normalized_glcms(cooccurrence_counts(example, offsets))
     rng = np.random.default_rng(2)
@@ -155,6 +178,120 @@ def test_spin_flip_pass_matches_python_reference(fixed_radius, every_direction):
     assert accepted == np.count_nonzero(texture != seed) and accepted >= 1
     assert attempts == seed.size if fixed_radius == 0 else attempts <= seed.size
     assert considered.all()
+
+
+def exact_rule_pass(texture, counts, offsets, target, totals, order, uniforms, quantiles, fixed_radius, regions):
+    """The pass as it was before the fast acceptance tests: the exact ACE change for every attempt."""
+    width = texture.shape[1]
+    groups, changes = np.zeros(len(offsets), dtype=np.int64), np.zeros(1)
+    considered = np.zeros(texture.shape, dtype=bool)
+    _mark_stipple_regions(considered, texture, regions, fixed_radius)
+    for t, flat in enumerate(order):
+        y, x = divmod(int(flat), width)
+        if considered[y, x]:
+            continue
+        considered[y, x] = True
+        if _flip_lowers_error(texture, counts, y, x, offsets, target, totals, groups, changes):
+            flip_update_kernel(texture, counts, y, x, offsets)
+            radius = fixed_radius if fixed_radius >= 0 else _stipple_radius(uniforms[t], quantiles)
+            regions[y, x] = radius if texture[y, x] else 0.0
+            _mark_considered(considered, y, x, radius)
+
+
+@pytest.mark.parametrize(
+    ("tone", "shape", "generic"),
+    [(0.1, (64, 64), False), (0.5, (64, 64), False), (0.85, (64, 64), False), (0.4, (48, 72), False),
+     (0.3, (40, 40), True)],
+)
+def test_fast_passes_keep_the_exact_rules_flips(tone, shape, generic):
+    """Four passes from the same states: the same texture, counts and regions bit for bit as with the exact
+    ACE change of every attempt (paper offsets: line sums; other offsets: the table sum)."""
+    from paperlib.stipple.extraction import extract_distribution
+
+    example = extract_distribution(stipple_tone_texture(tone, max(shape), rng=3)).distribution[: shape[0], : shape[1]]
+    offsets = GENERIC_OFFSETS if generic else paper_offsets(min(shape))
+    target = normalized_glcms(cooccurrence_counts(example, offsets))
+    totals = pair_totals(shape, offsets).astype(np.float64)
+    quantiles = paper_radius_quantiles(stipple_geometry(example))
+    rng = np.random.default_rng(int(tone * 100))
+    fast_texture = np.zeros(shape, dtype=bool)
+    fast_counts, fast_regions = cooccurrence_counts(fast_texture, offsets), np.zeros(shape)
+    texture, counts, regions = fast_texture.copy(), fast_counts.copy(), fast_regions.copy()
+    kept = 0
+    for fixed_radius in (-1.0, -1.0, quantiles[0], -1.0):
+        order, uniforms = rng.permutation(example.size).astype(np.int64), rng.random(example.size)
+        exact_rule_pass(texture, counts, offsets, target, totals, order, uniforms, quantiles, fixed_radius, regions)
+        _, accepted = _spin_flip_pass(fast_texture, fast_counts, offsets, target, totals, np.zeros(len(offsets), np.int64),
+                                      np.zeros(1), order, uniforms, quantiles, fixed_radius,
+                                      np.zeros(shape, dtype=bool), fast_regions)
+        kept += accepted
+        np.testing.assert_array_equal(fast_texture, texture)
+        np.testing.assert_array_equal(fast_counts, counts)
+        np.testing.assert_array_equal(fast_regions, regions)
+    assert kept > 10
+
+
+def decision_setting(seed, shape, offsets, ink, target_ink):
+    """A random texture, its counts and change table, for a target with more ink (so flips go both ways)."""
+    rng = np.random.default_rng(seed)
+    texture = rng.random(shape) < ink
+    target = normalized_glcms(cooccurrence_counts(rng.random(shape) < target_ink, offsets))
+    counts = cooccurrence_counts(texture, offsets)
+    totals = pair_totals(shape, offsets).astype(np.float64)
+    table = np.empty((2, len(offsets), 9))
+    _fill_change_table(counts, target, totals, table)
+    return texture, counts, target, totals, table
+
+
+@pytest.mark.parametrize(("shape", "ink"), [((64, 64), 0.03), ((50, 70), 0.2), ((33, 21), 0.5)])
+def test_fast_decisions_are_the_exact_rules(shape, ink):
+    """Every decision the fast tests take is the exact kernel's; they decline (-1) only near the threshold."""
+    offsets = paper_offsets(min(shape))
+    texture, counts, target, totals, table = decision_setting(1, shape, offsets, ink, 2 * ink)
+    length = _paper_block_length(offsets)
+    height, width = shape
+    prefix = np.zeros((2, 3, 3, length + 1))
+    _fill_prefix_sums(table, length, prefix)
+    stride, per_line = max(shape), (max(shape) + 63) // 64
+    line_bytes = np.zeros((2 * (height + width) - 1) * stride, dtype=np.uint8)
+    line_bits = np.zeros((2 * (height + width) - 1) * per_line, dtype=np.uint64)
+    for y, x in zip(*np.nonzero(texture)):
+        _set_line_pixel(line_bytes, line_bits, stride, per_line, height, width, y, x, 1)
+    margin = _decision_margin(totals)
+    groups, changes = np.zeros(len(offsets), dtype=np.int64), np.zeros(1)
+    exact, by_lines, by_table = [], [], []
+    for y in range(height):
+        for x in range(width):
+            exact.append(int(_flip_lowers_error(texture, counts, y, x, offsets, target, totals, groups, changes)))
+            level = int(texture[y, x])
+            by_lines.append(_line_decision(line_bytes, line_bits, stride, per_line, height, width, y, x, level,
+                                           length, table, prefix, margin))
+            by_table.append(_fast_flip_decision(texture, y, x, offsets, table, margin))
+    exact, by_lines, by_table = np.array(exact), np.array(by_lines), np.array(by_table)
+    assert 0 < exact.sum() < exact.size  # flips kept and flips rejected
+    for decided in (by_lines, by_table):
+        np.testing.assert_array_equal(decided[decided >= 0], exact[decided >= 0])
+        assert np.count_nonzero(decided < 0) <= 2
+    # an infinite margin decides nothing: the exact rule then runs
+    assert _line_decision(line_bytes, line_bits, stride, per_line, height, width, 3, 4, 0, length, table, prefix,
+                          np.inf) == -1
+    assert _fast_flip_decision(texture, 3, 4, offsets, table, np.inf) == -1
+
+
+def test_change_table_holds_the_kernels_changes():
+    """table[v, m, first * 3 + second] is glcm's change of offset m over its pair total, to 1.5 eps."""
+    shape, offsets = (30, 26), paper_offsets(26)
+    texture, counts, target, totals, table = decision_setting(4, shape, offsets, 0.3, 0.4)
+    height, width = shape
+    for y, x in [(0, 0), (5, 7), (29, 25), (15, 3), (12, 20)]:
+        level = int(texture[y, x])
+        for m, (dy, dx) in enumerate(offsets):
+            first = int(texture[y - dy, x - dx]) if 0 <= y - dy < height and 0 <= x - dx < width else 2
+            second = int(texture[y + dy, x + dx]) if 0 <= y + dy < height and 0 <= x + dx < width else 2
+            change = _offset_error_change(texture, counts, y, x, m, dy, dx, target, totals[m]) / totals[m]
+            assert abs(table[level, m, first * 3 + second] - change) <= 1.5 * np.finfo(float).eps * abs(change)
+    assert _paper_block_length(offsets) == 25 and _paper_block_length(GENERIC_OFFSETS) == 0
+    assert _paper_block_length(paper_offsets(26)[::-1].copy()) == 0
 
 
 def test_matched_spacing_reaches_the_examples_distances():

@@ -93,6 +93,9 @@ __all__ = [
 
 # Pixels per band of uniforms drawn at once in select_tones (1 Mi: 8 MiB of float64).
 SELECTION_BAND_PIXELS = 1 << 20
+# Pixels per band of the small-chunk removal (1 Mi: its int32 labels take 4 MiB per band, where
+# the whole 4096 x 4096 image took 64 MiB, plus 128 MiB for the look-up of the removed labels).
+CHUNK_BAND_PIXELS = 1 << 20
 
 #: Gray of tone 0, pure white (section 3.2): paper, no marks.
 PURE_WHITE = 1.0
@@ -134,6 +137,8 @@ class StippleRendering:
         The level map: the level chosen for every pixel, an index into ``level_grays``. With
         pure levels, 0 = pure white, ``1 .. n`` = the stipple tones in the order given, ``n + 1``
         = pure black (the paper's tone 0 .. tone 9 for an 8-tone library, lightest first).
+        :func:`render_stippling` stores it in the smallest signed integer type that holds the
+        levels (int8 up to 127 levels), not int64: at 4096 x 4096 that is 16 MiB, not 128 MiB.
     distribution : ndarray of bool
         The distribution image of Figure 9, ``True`` = stipple centre.
     tone_grays : ndarray of float
@@ -224,7 +229,10 @@ def _checked_image(image) -> np.ndarray:
             f"image must be floating point with intensities in [0, 1], got dtype {array.dtype}; "
             "convert 8-bit images with skimage.util.img_as_float"
         )
-    if not np.all(np.isfinite(array)) or array.min() < 0 or array.max() > 1:
+    # min and max are NaN when any value is (and +-inf fail the range test): no image-sized
+    # temporary of np.isfinite (16 MiB at 4096 x 4096)
+    low, high = array.min(), array.max()
+    if not (np.isfinite(low) and np.isfinite(high)) or low < 0 or high > 1:
         raise ValueError("image values must be finite and within [0, 1] (0 black, 1 white)")
     return array
 
@@ -477,9 +485,21 @@ def select_tones(image, tone_grays, rng=None, *, pure_levels: bool = True) -> np
     """
     gray = _checked_image(image)
     grays = level_grays(tone_grays, pure_levels=pure_levels)
-    rng = as_generator(rng)
+    return _selected_levels(gray, grays, as_generator(rng), np.int64)
+
+
+def _level_dtype(n_levels: int) -> type:
+    """The smallest signed integer type holding level numbers 0 .. n_levels - 1."""
+    for dtype in (np.int8, np.int16, np.int32):
+        if n_levels - 1 <= np.iinfo(dtype).max:
+            return dtype
+    return np.int64
+
+
+def _selected_levels(gray, grays, rng, dtype) -> np.ndarray:
+    """:func:`select_tones` on checked input (``grays`` the level grays), as a ``dtype`` level map."""
     order = np.argsort(grays)
-    tone_index = np.empty(gray.shape, dtype=np.int64)
+    tone_index = np.empty(gray.shape, dtype=dtype)
     # uniforms drawn a band of rows at a time (the same stream as one draw of the whole image)
     # so that a 4096 x 4096 image needs no 128 MiB array of them
     band = max(1, SELECTION_BAND_PIXELS // gray.shape[1])
@@ -544,30 +564,31 @@ def distribution_image(tone_index, distribution_textures, rng=None, *, pure_leve
     side = tiles[0].shape[0]
     cells = (-(-index.shape[0] // side), -(-index.shape[1] // side))
     turns = rng.integers(0, 4, size=(len(tiles), *cells))
-    pure = None
-    if pure_levels:  # stipple tone k is level k + 1; pure pixels copy tone 0 and are cleared
-        pure = (index == 0) | (index == len(tiles) + 1)
-        index = np.where(pure, 0, index - 1)
     out = np.empty(index.shape, dtype=np.bool_)
-    _stitch_kernel(np.ascontiguousarray(index, dtype=np.int64), np.stack(tiles), turns, out)
-    if pure is not None:
-        out[pure] = False
+    # the level map is read as it is (any integer dtype, no image-sized int64 copy of it)
+    _stitch_kernel(index, np.stack(tiles), turns, 1 if pure_levels else 0, out)
     return out
 
 
 @numba.njit(cache=True)
-def _stitch_kernel(index, tiles, turns, out):
-    """``out[r, c]`` = pixel (r, c) of the large texture of level ``index[r, c]``.
+def _stitch_kernel(index, tiles, turns, first, out):
+    """``out[r, c]`` = pixel (r, c) of the large texture of stipple tone ``index[r, c] - first``.
 
-    The large texture of level t holds, in tile cell (R, C), ``np.rot90(tiles[t], turns[t, R, C])``.
+    The large texture of tone t holds, in tile cell (R, C), ``np.rot90(tiles[t], turns[t, R, C])``.
+    With ``first = 1`` (pure levels) levels 0 and ``len(tiles) + 1`` are pure white and black:
+    no texture, no stipple centre.
     """
     side = tiles.shape[1]
     last = side - 1
+    n_tones = tiles.shape[0]
     for r in range(index.shape[0]):
         i = r % side
         for c in range(index.shape[1]):
             j = c % side
-            tone = index[r, c]
+            tone = np.int64(index[r, c]) - first  # int64 whatever the map's type (uint64 - int64 is a float)
+            if tone < 0 or tone >= n_tones:  # a pure level (the level map was checked)
+                out[r, c] = False
+                continue
             turn = turns[tone, r // side, c // side]
             if turn == 0:
                 out[r, c] = tiles[tone, i, j]
@@ -676,15 +697,31 @@ def remove_small_chunks(image, min_size: int, *, connectivity: int = 2) -> Chunk
     if connectivity not in (1, 2):
         raise ValueError(f"connectivity must be 1 or 2, got {connectivity!r}")
     largest_removed = int(min_size) - 1
+    cleaned = ink.copy()
     if largest_removed == 0:
-        return ChunkRemoval(image=ink.copy(), removed_ink=0, removed_paper=0)
-    no_specks = remove_small_objects(ink, connectivity=connectivity, max_size=largest_removed)
-    cleaned = remove_small_holes(no_specks, connectivity=connectivity, max_size=largest_removed)
-    return ChunkRemoval(
-        image=cleaned,
-        removed_ink=int(np.count_nonzero(ink & ~no_specks)),
-        removed_paper=int(np.count_nonzero(cleaned & ~no_specks)),
-    )
+        return ChunkRemoval(image=cleaned, removed_ink=0, removed_paper=0)
+    # Bands of rows with a halo. A chunk of at most m = largest_removed pixels spans at most
+    # m rows, so one that touches a band lies inside the band grown by m rows, and there it is
+    # whole; a larger component that leaves the grown band crosses its m halo rows and keeps
+    # more than m pixels inside it, so it is not removed there either: every band pixel gets
+    # the verdict of the whole-image removal. The holes are looked for in the chunk-free image,
+    # which the first step gives for the band grown by m from the band grown by 2 m.
+    height = ink.shape[0]
+    halo = largest_removed
+    band = max(1, CHUNK_BAND_PIXELS // ink.shape[1])
+    removed_ink = removed_paper = 0
+    for top in range(0, height, band):
+        bottom = min(top + band, height)
+        near_top, near_bottom = max(0, top - halo), min(height, bottom + halo)
+        far_top, far_bottom = max(0, top - 2 * halo), min(height, bottom + 2 * halo)
+        no_specks = remove_small_objects(ink[far_top:far_bottom], connectivity=connectivity,
+                                         max_size=largest_removed)[near_top - far_top:near_bottom - far_top]
+        filled = remove_small_holes(no_specks, connectivity=connectivity, max_size=largest_removed)
+        rows = slice(top - near_top, bottom - near_top)
+        removed_ink += int(np.count_nonzero(ink[top:bottom] & ~no_specks[rows]))
+        removed_paper += int(np.count_nonzero(filled[rows] & ~no_specks[rows]))
+        cleaned[top:bottom] = filled[rows]
+    return ChunkRemoval(image=cleaned, removed_ink=removed_ink, removed_paper=removed_paper)
 
 
 def render_stippling(
@@ -741,7 +778,9 @@ def render_stippling(
         if grays.size != len(tiles):
             raise ValueError(f"need one gray per tone: {len(tiles)} tones, {grays.size} grays")
     levels = level_grays(grays, pure_levels=pure_levels)
-    tone_index = select_tones(gray, grays, rng, pure_levels=pure_levels)
+    # the level map in the smallest integer type that holds it: int64 would take 128 MiB at
+    # 4096 x 4096, more than the whole rendering needs otherwise
+    tone_index = _selected_levels(gray, levels, rng, _level_dtype(levels.size))
     distribution = distribution_image(tone_index, tiles, rng, pure_levels=pure_levels)
     stippled = place_marks(distribution, tone_index, libraries, rng, pure_levels=pure_levels)
     cleaned = remove_small_chunks(stippled, min_chunk)
