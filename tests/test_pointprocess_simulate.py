@@ -14,6 +14,7 @@ Four kinds of evidence:
   allowance for looking at 15 values at once).
 """
 
+import dataclasses
 import json
 import warnings
 from pathlib import Path
@@ -119,6 +120,80 @@ def test_kernel_matches_reference_from_a_start_violating_the_hard_core():
     with pytest.warns(UserWarning, match="zero density: 2 of its 3 points"):
         fast, fast_trace, slow, slow_trace = run_both(StraussHard(50, 0.5, 0.1, 0.05), start=start, T=500)
     assert np.array_equal(fast_trace, slow_trace) and fast == slow
+
+
+# From a few 1e4 points the cell records outgrow the caches and the kernel prefetches the
+# cells of the coming steps (_kernels, "Data layout" and "Memory"). These cases check that
+# path, at spatstat's moves, against slow paths without it: the pure-Python reference, and
+# the same kernel on a single cell (an O(n) scan of one record row, too small to prefetch).
+
+
+def strauss_family(n):
+    r = 0.08 * np.sqrt(50 / n)  # the benchmark's family: about 0.93 n points at equilibrium
+    return StraussHard(2 * n, 0.3, r, r / 4, closed=False)
+
+
+LARGE_CASES = {
+    "StraussHard, 5e4 points": dict(model=strauss_family(50_000), n=50_000),
+    "StraussHard, 5e4 points, torus": dict(model=strauss_family(50_000), n=50_000, periodic=True),
+    "MultiStraussHard, 3 types, 5e4 points": dict(
+        model=MultiStraussHard([32_000, 24_000, 48_000], gamma=[[0.3, 0.5, 0.8], [0.5, 0.2, 0.6], [0.8, 0.6, 0.4]],
+                               r=0.0032, hc=[[0.0013, 0.0006, 0.0005], [0.0006, 0.0016, 0.0006],
+                                             [0.0005, 0.0006, 0.001]]),
+        n=50_000),
+}
+
+
+def large_start(case):
+    options = LARGE_CASES[case]
+    return rmh(options["model"], UNIT, 30 * options["n"], periodic=options.get("periodic", False), rng=0)
+
+
+def run_on_one_cell(model, start, T, seed, **options):
+    setup = simulate._prepare(model, UNIT, T, ptypes=None, fixall=False, intensity_map=None, **options)
+    grid = setup.grid._replace(ncx=1, ncy=1, x_scale=1.0 / setup.grid.width, y_scale=1.0 / setup.grid.height)
+    chain = simulate._Chain(dataclasses.replace(setup, grid=grid), start.points, start.marks.astype(np.int64))
+    trace = chain.run(T, np.random.default_rng(seed), _kernels.mh_steps, trace=True)
+    return chain.pattern(), trace, chain.state
+
+
+@pytest.mark.parametrize("case", list(LARGE_CASES))
+def test_prefetching_kernel_matches_the_one_cell_scan_at_many_points(case):
+    options = LARGE_CASES[case]
+    model, periodic, start = options["model"], options.get("periodic", False), large_start(case)
+    moves = dict(p=0.9, q=0.9, periodic=periodic)
+    grid, grid_trace = simulate._simulate(model, UNIT, 20_000, stepper=_kernels.mh_steps, trace=True, start=start,
+                                          rng=4, **moves)
+    scan, scan_trace, scan_state = run_on_one_cell(model, start, 20_000, 4, **moves)
+    assert np.array_equal(grid_trace, scan_trace) and grid == scan
+    setup = simulate._prepare(model, UNIT, 1, ptypes=None, fixall=False, intensity_map=None, **moves)
+    grid_state = simulate._Chain(setup, start.points, start.marks.astype(np.int64)).state
+    assert grid_state.cell_points.nbytes >= _kernels.PREFETCH_MIN_BYTES > scan_state.cell_points.nbytes
+    assert set(np.unique(grid_trace).tolist()) >= {-3, -2, -1, 1, 2, 3}
+
+
+def test_prefetching_kernel_matches_the_reference_at_5e4_points():
+    start = large_start("StraussHard, 5e4 points")
+    fast, fast_trace, slow, slow_trace = run_both(strauss_family(50_000), T=400, seed=5, start=start, p=0.9, q=0.9)
+    assert np.array_equal(fast_trace, slow_trace) and fast == slow
+    assert (fast_trace == _kernels.SHIFT).sum() > 100
+
+
+def test_cell_records_mirror_the_points_after_a_run():
+    """Every point has exactly one record, in its cell, at the slot ``place`` names, with its values."""
+    model = LARGE_CASES["MultiStraussHard, 3 types, 5e4 points"]["model"]
+    setup = simulate._prepare(model, UNIT, 1, p=0.5, q=0.5, ptypes=None, fixall=False, periodic=False,
+                              intensity_map=None)
+    chain = simulate._Chain(setup, np.empty((0, 2)), np.empty(0, dtype=np.int64))
+    chain.run(100_000, np.random.default_rng(6), _kernels.mh_steps)
+    state, n = chain.state, chain.n
+    assert n > 1000 and state.cell_count.sum() == n
+    cells, slots = state.place[:n, 0], state.place[:n, 1]
+    assert np.array_equal(cells, _kernels.cells_of(setup.grid, state.x[:n], state.y[:n]))
+    assert np.all(slots < state.cell_count[cells])
+    records = state.cell_points[cells, slots]
+    assert np.array_equal(records, np.column_stack([state.x[:n], state.y[:n], state.mark[:n], np.arange(n)]))
+    assert state.cell_points.ctypes.data % 64 == 0 and state.cell_points.shape[1] % 2 == 0  # aligned rows
 
 
 @pytest.mark.parametrize("n_points", [20, 300], ids=["scan of all points", "grid scan"])

@@ -51,7 +51,8 @@ _CHUNK_STEPS = 1 << 15  # steps per kernel call: ~2 MB of pre-drawn randomness
 _MAX_CELLS = 1 << 20
 _POINTS_PER_CELL = 2.0
 _MIN_POINT_CAPACITY = 64
-_MIN_CELL_CAPACITY = 8
+_MIN_CELL_CAPACITY = 4
+_CELL_SLACK = 2  # free slots above the start's fullest cell: cells rarely overflow, rows stay short
 
 
 def rmh(
@@ -457,26 +458,47 @@ def _draw_proposals(setup: _Setup, size: int, rng) -> Proposals:
 
 
 def _empty_state(n_cells: int, point_capacity: int, cell_capacity: int) -> State:
+    cell_capacity += cell_capacity % 2  # even, so that every row of cell records is aligned
     return State(
         x=np.zeros(point_capacity), y=np.zeros(point_capacity), mark=np.zeros(point_capacity, dtype=np.int64),
-        map_value=np.zeros(point_capacity), cell=np.zeros(point_capacity, dtype=np.int64),
-        slot=np.zeros(point_capacity, dtype=np.int64), cell_count=np.zeros(n_cells, dtype=np.int64),
-        cell_members=np.zeros((n_cells, cell_capacity), dtype=np.int64),
+        map_value=np.zeros(point_capacity), place=np.zeros((point_capacity, 2), dtype=np.int64),
+        cell_count=np.zeros(n_cells, dtype=np.int64), cell_points=_cell_records(n_cells, cell_capacity),
     )
 
 
+def _cell_records(n_cells: int, cell_capacity: int) -> np.ndarray:
+    """Zeroed ``State.cell_points`` whose rows start on 64-byte (cache line) boundaries.
+
+    A record is 32 bytes and the capacity is even, so with an aligned start every row is
+    aligned and a cell's first two points share one cache line (numpy only guarantees
+    16-byte alignment, with which they would straddle two lines about half of the time).
+    """
+    assert cell_capacity % 2 == 0, "an even capacity keeps every row aligned"
+    size = n_cells * cell_capacity * 4
+    buffer = np.zeros(size + 8)
+    first = (-buffer.ctypes.data % 64) // 8
+    return buffer[first: first + size].reshape(n_cells, cell_capacity, 4)
+
+
 def _with_more_points(state: State) -> State:
-    """The state with twice the point capacity (cell lists refer to indices, which stay valid)."""
+    """The state with twice the point capacity (cell records refer to indices, which stay valid)."""
     grown = {name: np.concatenate([getattr(state, name), np.zeros_like(getattr(state, name))])
-             for name in ("x", "y", "mark", "map_value", "cell", "slot")}
+             for name in ("x", "y", "mark", "map_value", "place")}
     return state._replace(**grown)
 
 
 def _with_bigger_cells(state: State) -> State:
-    members = state.cell_members
-    bigger = np.zeros((members.shape[0], 2 * members.shape[1]), dtype=np.int64)
-    bigger[:, : members.shape[1]] = members
-    return state._replace(cell_members=bigger)
+    """The state with 1.5 times the slots per cell (slot numbers, and so ``state.place``, stay valid).
+
+    A geometric growth keeps the number of regrowths logarithmic; a factor below 2 keeps
+    the records compact, since every row is as long as the fullest cell needs and a
+    neighbour scan pays for the memory of the whole grid (see ``_kernels``, "Memory").
+    """
+    n_cells, capacity, _ = state.cell_points.shape
+    grown = capacity + max(2, capacity // 2)
+    bigger = _cell_records(n_cells, grown + grown % 2)  # even, as _cell_records needs
+    bigger[:, :capacity] = state.cell_points
+    return state._replace(cell_points=bigger)
 
 
 def _grown(state: State, status: int) -> State:
@@ -497,7 +519,7 @@ class _Chain:
         x, y = np.array(points[:, 0], dtype=np.float64), np.array(points[:, 1], dtype=np.float64)
         occupancy = np.bincount(_kernels.cells_of(grid, x, y), minlength=1).max(initial=0)
         self.state = _empty_state(grid.ncx * grid.ncy, max(_MIN_POINT_CAPACITY, 2 * len(x)),
-                                  max(_MIN_CELL_CAPACITY, 2 * int(occupancy)))
+                                  max(_MIN_CELL_CAPACITY, int(occupancy) + _CELL_SLACK))
         self.n, status = _kernels.insert_points(0, x, y, marks, _map_values(setup, x, y), self.state, grid)
         assert status == DONE, "capacities were sized for the start"
 
