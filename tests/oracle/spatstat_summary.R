@@ -3,7 +3,11 @@
 # Sourced by tests/oracle/spatstat_reference.R (run from the project root), or alone:
 #   Rscript -e 'source("tests/oracle/common.R"); source("tests/oracle/spatstat_summary.R")'
 # Writes tests/oracle/summary.json with, for each case, the point pattern (coordinates and
-# window, so the tests need no R), spatstat's fv tables and timings of Lest.
+# window, so the tests need no R), spatstat's fv tables and timings of Lest, Kest, Lcross and pcf.
+#
+# With the environment variable SPATSTAT_SUMMARY_SERVE=1 it writes nothing and instead serves
+# the timed calls (`benchmark_calls`) on standard input for benchmarks/bench_pointprocess_summary.py,
+# which times spatstat in the same command as paperlib, on the same points (see serve_benchmark_calls).
 #
 # Exactness: coordinates, windows and r values must reload as the same doubles (ties between
 # pair distances and r values decide the counts), but jsonlite writes at most 15 significant
@@ -134,23 +138,48 @@ median_seconds <- function(expr_fun, repeats, calls = 1) {
   median(replicate(repeats, system.time(for (i in seq_len(calls)) expr_fun())[["elapsed"]])) / calls
 }
 
-# Lest on n uniform points in the unit square, spatstat's default r grid (rmax 0.25 at 1e3, 0.178 at 1e4,
-# 0.0564 at 1e5); at 1e3 and 1e4 also with rmax = 0.05, the setting of the conventions notes' table
+# The calls timed here and by the benchmark, on n uniform points in the unit square with marks
+# a, b, a, b, ... (for Lcross), spatstat's default r grid and defaults otherwise:
+# Lest/Kest rmax 0.25 at 1e3, 0.178 at 1e4, 0.0564 at 1e5; Lcross("a", "b") rmax from the
+# intensity of b: 0.25, 0.25, 0.0798; pcf translate + Ripley, Epanechnikov kernel, Stoyan's
+# rule (0.15), divisor r.
+benchmark_calls <- list(
+  Lest_isotropic = function(X) Lest(X, correction = "isotropic"),
+  Lest_border = function(X) Lest(X, correction = "border"),
+  Kest_isotropic = function(X) Kest(X, correction = "isotropic"),
+  Lcross_isotropic = function(X) Lcross(X, "a", "b", correction = "isotropic"),
+  pcf_default = function(X) pcf(X)
+)
+alternating_marks <- function(n) factor(c("a", "b")[(seq_len(n) - 1) %% 2 + 1], levels = c("a", "b"))
+
+# Timings of benchmark_calls on runifpoint(n) (seed 1; pcf not at 1e5); at 1e3 and 1e4 also Lest with rmax = 0.05,
+# the setting of the conventions notes' table. Keys as benchmark_calls' names without "Lest_"
+# for Lest (isotropic, border), as recorded before the others were added.
 lest_timings <- function() {
   out <- list()
   for (n in c(1e3, 1e4, 1e5)) {
     set.seed(1)
     X <- runifpoint(n)
+    marks(X) <- alternating_marks(n)
+    Y <- unmark(X)
     repeats <- if (n < 1e5) 7 else 3
     calls <- if (n < 1e4) 50 else 1
-    timing <- list(
-      isotropic = median_seconds(function() Lest(X, correction = "isotropic"), repeats, calls),
-      border = median_seconds(function() Lest(X, correction = "border"), repeats, calls)
-    )
+    timing <- list()
+    for (name in names(benchmark_calls)) {
+      # pcf.ppp spends most of its time in deparse() (of the pair weights, through density's call):
+      # about a second at 1e3 points, 2.5 minutes at 1e4 (1e7 pairs; one call at a time, 3 repeats),
+      # ten times the pairs at 1e5 (not timed)
+      if (name == "pcf_default" && n >= 1e5) next
+      key <- sub("^Lest_", "", name)
+      data <- if (name == "Lcross_isotropic") X else Y
+      slow <- name == "pcf_default"
+      timing[[key]] <- median_seconds(function() benchmark_calls[[name]](data), if (slow) 3 else repeats,
+                                      if (slow) 1 else calls)
+    }
     if (n < 1e5) {
-      timing$isotropic_rmax_0.05 <- median_seconds(function() Lest(X, rmax = 0.05, correction = "isotropic"),
+      timing$isotropic_rmax_0.05 <- median_seconds(function() Lest(Y, rmax = 0.05, correction = "isotropic"),
                                                    repeats, calls)
-      timing$border_rmax_0.05 <- median_seconds(function() Lest(X, rmax = 0.05, correction = "border"),
+      timing$border_rmax_0.05 <- median_seconds(function() Lest(Y, rmax = 0.05, correction = "border"),
                                                 repeats, calls)
     }
     out[[format(n, scientific = FALSE)]] <- timing
@@ -158,17 +187,65 @@ lest_timings <- function() {
   out
 }
 
-write_oracle(
-  list(
-    description = paste(
-      "spatstat Kest/Lest/Kcross/Lcross/pcf on its data sets and a letterR polygon case;",
-      "function values rounded to 11 significant digits; timings are median elapsed seconds",
-      "of Lest on uniform points in the unit square (spatstat's default r grid unless named)"
+# A line protocol on standard input, one reply line each on standard output:
+#   load PATH N     -> X: N points read from PATH (2N float64, x then y), unit square, marks a, b, a, ...
+#   run NAME        -> call benchmark_calls[[NAME]] on X (the caller times the round trip)
+#   values NAME PATH -> the call's fv table written to PATH as float64, column by column; reply
+#                       "ok" and the column names
+#   quit
+# Replies "ok ..." or "error MESSAGE".
+serve_benchmark_calls <- function() {
+  input <- file("stdin")
+  open(input)
+  X <- Y <- NULL
+  reply <- function(...) {
+    cat(..., "\n", sep = "")
+    flush(stdout())
+  }
+  repeat {
+    line <- readLines(input, n = 1)
+    if (length(line) == 0 || line == "quit") break
+    words <- strsplit(line, " ", fixed = TRUE)[[1]]
+    result <- tryCatch({
+      if (words[1] == "load") {
+        n <- as.integer(words[3])
+        xy <- readBin(words[2], "double", n = 2 * n)
+        X <- ppp(xy[seq_len(n)], xy[n + seq_len(n)], window = square(1), marks = alternating_marks(n))
+        Y <- unmark(X)
+        "ok"
+      } else {
+        data <- if (words[2] == "Lcross_isotropic") X else Y
+        f <- benchmark_calls[[words[2]]](data)
+        if (words[1] == "values") {
+          table <- as.data.frame(f)
+          writeBin(as.numeric(unlist(table, use.names = FALSE)), words[3])
+          paste("ok", paste(names(table), collapse = " "))
+        } else {
+          "ok"
+        }
+      }
+    }, error = function(e) paste("error", conditionMessage(e)))
+    reply(result)
+  }
+}
+
+if (Sys.getenv("SPATSTAT_SUMMARY_SERVE") == "1") {
+  serve_benchmark_calls()
+} else {
+  write_oracle(
+    list(
+      description = paste(
+        "spatstat Kest/Lest/Kcross/Lcross/pcf on its data sets and a letterR polygon case;",
+        "function values rounded to 11 significant digits; timings are median elapsed seconds",
+        "of Lest (isotropic, border), Kest (isotropic: Kest_isotropic), Lcross a to b",
+        "(isotropic: Lcross_isotropic) and pcf (defaults: pcf_default) on uniform points in the",
+        "unit square with alternating marks a, b (spatstat's default r grid unless named)"
+      ),
+      datasets = summary_cases(),
+      polygon = polygon_case(),
+      pcf = pcf_cases(),
+      timings = lest_timings()
     ),
-    datasets = summary_cases(),
-    polygon = polygon_case(),
-    pcf = pcf_cases(),
-    timings = lest_timings()
-  ),
-  "tests/oracle/summary.json"
-)
+    "tests/oracle/summary.json"
+  )
+}
