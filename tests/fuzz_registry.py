@@ -287,6 +287,7 @@ REGISTRY = {
     "paperlib.arrangement.element_features": "elements=elements reference_area=float ; include_width=bool curvature_scale=float corner_angle=float join_tolerance=float",
     "paperlib.arrangement.element_positions": "elements=elements",
     "paperlib.arrangement.extremity_points": "element=elements ; curvature_scale=float corner_angle=float join_tolerance=float",
+    "paperlib.arrangement.minimum_box_areas": "elements=elements ; include_width=bool",
     "paperlib.arrangement.fit": "elements=elements labels=counts window=window ; interaction=str",
     "paperlib.arrangement.normalized_area": "area=float reference_area=float",
     "paperlib.arrangement.normalized_count": "count=count",

@@ -253,10 +253,10 @@ def test_ari_bad_input(a, b):
 # --------------------------------------------------------------------------- the recursive default
 
 
-def drawn(types, seed):
+def drawn(types, seed, font="futural"):
     from paperlib.datasets import drawn_glyph_exemplar
 
-    return drawn_glyph_exemplar(types, rng=seed)
+    return drawn_glyph_exemplar(types, font=font, rng=seed)
 
 
 @pytest.mark.parametrize("seed", [0, 1])
@@ -330,3 +330,45 @@ def test_recursive_is_deterministic_and_read_only():
         first.splits[0].members[0] = 1
     with pytest.raises(ValueError):
         first.splits[0].histogram.counts[0] = 1
+
+
+def test_area_histogram_spans_the_group_so_sizes_two_apart_divide():
+    # Three sizes of a cursive 'e' (x2.3, x2): the two larger are 12 and 25 elements a factor 4 apart
+    # in area. Over a fixed 3-decade domain their one empty bin is no meaningful gap for 37
+    # elements; over the values' own support it is (issue 27, held-out case held_area_3).
+    exemplar = drawn((("e", 0.03, 30), ("e", 0.07, 25, "E"), ("e", 0.14, 12, "EE")), 0, font="scripts")
+    result = categorize(exemplar.elements, exemplar.window.area)
+    assert adjusted_rand_index(result.labels, exemplar.labels) == 1.0
+    histogram = result.splits[0].histogram
+    assert histogram.edges[0] <= histogram.values.min() < histogram.edges[1]
+    assert histogram.edges[-2] <= histogram.values.max() <= histogram.edges[-1]
+
+
+def area_parameters():
+    return {"epsilon": 1.0, "bins": 10, "min_category_size": 10}
+
+
+def test_a_gap_between_values_that_no_bin_shows_divides_the_group():
+    from paperlib.arrangement.categorize import _node_histogram, _split_at_value_gap
+
+    # Two populations 0.28 decades apart in log area, each spread over 0.3: the 0.15-decade bins
+    # [-1.5, -1.35) and [-1.35, -1.2) each hold the edge of one of them, so no bin is empty.
+    values = np.concatenate([np.linspace(-1.79, -1.49, 30), np.linspace(-1.21, -0.86, 25)])
+    histogram = _node_histogram("area", values, area_parameters())
+    assert np.all(histogram.counts > 0) and np.unique(histogram.groups).size == 1
+    divided = _split_at_value_gap(histogram, area_parameters())
+    assert divided.groups.tolist() == [0] * 30 + [1] * 25
+
+
+def test_no_value_gap_in_one_population_or_below_the_bin_width():
+    from paperlib.arrangement.categorize import _node_histogram, _split_at_value_gap
+
+    rng = np.random.default_rng(0)
+    for _ in range(20):  # one hand-drawn size: log area spread like the test matrix's types
+        values = np.log10((0.05 * rng.uniform(0.85, 1.15, 60)) ** 2 / 0.05)
+        histogram = _node_histogram("area", values, area_parameters())
+        assert np.unique(_split_at_value_gap(histogram, area_parameters()).groups).size == 1
+    # 200 values in two tight clusters 0.1 decades apart: meaningful, but finer than a bin
+    values = np.concatenate([np.full(100, -1.3), np.full(100, -1.2)]) + rng.uniform(0, 1e-3, 200)
+    histogram = _node_histogram("area", values, area_parameters())
+    assert np.unique(_split_at_value_gap(histogram, area_parameters()).groups).size == 1

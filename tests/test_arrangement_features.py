@@ -10,6 +10,7 @@ from paperlib.arrangement.features import (
     crossing_points,
     element_features,
     extremity_points,
+    minimum_box_areas,
     normalized_area,
     normalized_count,
     normalized_elongation,
@@ -342,3 +343,68 @@ def test_bad_elements():
         extremity_points([hershey_glyph("x")])
     with pytest.raises(TypeError, match="Element"):
         crossing_points(np.zeros((3, 2)))
+
+
+# --------------------------------------------------------------------------- ink-filled loops
+
+
+def hairpin(turn_x):
+    """A stroke up and back down that crosses itself once; ``turn_x`` sets how wide its loop is."""
+    return Element([Stroke([(-0.01, 0.0), (0.01, 1.0), (turn_x, 0.6), (-0.2, 0.1)], width=0.05)])
+
+
+def test_a_retraced_hairpin_is_not_a_crossing_a_loop_with_a_hole_is():
+    # Both cross themselves once. The narrow loop (mean width ~0.01) is covered by the 0.05 pen: a
+    # cusp drawn up and back down by a hand, as the stem of a cursive 'a'; the wide one has a hole.
+    assert len(crossing_points(hairpin(0.02))) == 0
+    assert len(crossing_points(hairpin(0.4))) == 1
+
+
+def test_hand_drawn_cursive_a_has_no_crossing():
+    from paperlib.datasets.drawn_glyphs import drawn_glyph
+
+    rng = np.random.default_rng(1)
+    glyphs = [drawn_glyph("a", 0.05, angle=rng.uniform(0, 360), font="cursive", rng=rng) for _ in range(20)]
+    assert element_features(glyphs, 1.0)["crossings_raw"].tolist() == [0] * 20
+
+
+# --------------------------------------------------------------------------- the area's box
+
+
+def rotated(points, angle):
+    rotation = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    return np.asarray(points, dtype=float) @ rotation.T
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.3, np.pi / 4, 2.0])
+def test_minimum_box_of_a_rotated_rectangle_is_the_rectangle(angle):
+    outline = rotated([(0, 0), (2, 0), (2, 1), (0, 1), (0, 0)], angle)
+    element = Element([Stroke(outline, width=0.1)])
+    assert minimum_box_areas([element], include_width=False)[0] == pytest.approx(2.0, rel=1e-12)
+    assert minimum_box_areas([element])[0] == pytest.approx(2.1 * 1.1, rel=1e-12)
+
+
+def test_minimum_box_matches_shapely_on_random_strokes():
+    shapely = pytest.importorskip("shapely")
+    rng = np.random.default_rng(0)
+    elements = [Element([Stroke(rng.normal(size=(int(rng.integers(3, 30)), 2)) * rng.uniform(0.1, 3, 2), width=0.01)])
+                for _ in range(50)]
+    ours = minimum_box_areas(elements, include_width=False)
+    theirs = [shapely.MultiPoint(e.strokes[0].points).minimum_rotated_rectangle.area for e in elements]
+    np.testing.assert_allclose(ours, theirs, rtol=1e-9)
+
+
+def test_minimum_box_of_degenerate_elements():
+    segment = Element([Stroke([(0, 0), (3, 4), (1.5, 2)], width=0.2)])
+    dot = Element([Stroke([(1, 1), (1, 1)], width=0.2)])
+    np.testing.assert_allclose(minimum_box_areas([segment, dot]), [5.2 * 0.2, 0.2 * 0.2], rtol=1e-12)
+    np.testing.assert_allclose(minimum_box_areas([segment, dot], include_width=False), [0.0, 0.0], atol=1e-12)
+
+
+def test_minimum_box_is_rotation_invariant_and_no_larger_than_the_pca_box():
+    from paperlib.geometry import oriented_bounding_boxes
+
+    glyphs = hershey_glyphs("nxS&", font="rowmans")
+    turned = [glyph.transformed(rotated(np.eye(2), 0.7), (3.0, -1.0)) for glyph in glyphs]
+    np.testing.assert_allclose(minimum_box_areas(turned), minimum_box_areas(glyphs), rtol=1e-9)
+    assert np.all(minimum_box_areas(glyphs) <= oriented_bounding_boxes(glyphs, include_width=True).areas * (1 + 1e-12))

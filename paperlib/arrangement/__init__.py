@@ -37,6 +37,7 @@ from .features import (
     crossing_points,
     element_features,
     extremity_points,
+    minimum_box_areas,
     normalized_area,
     normalized_count,
     normalized_elongation,
@@ -50,7 +51,7 @@ __all__ = [
     "AREA_FRACTION", "Arrangement", "BOX_DISTANCES", "INTERACTIONS", "ArrangementModel", "AreaCategory", "COUNT_SCALE", "Categorization",
     "DEFAULT_BINS", "DistanceCutoffs", "METHODS", "RECURSIVE_FEATURES", "Split", "recursive_feature_values", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
     "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "box_distance_matrix", "categorize", "crossing_points",
-    "element_features", "element_positions", "extremity_points", "fit", "normalized_area", "normalized_count",
+    "element_features", "element_positions", "extremity_points", "fit", "minimum_box_areas", "normalized_area", "normalized_count",
     "normalized_elongation", "normalized_orientation", "render", "robust_pca", "subset_size", "synthesize",
     "unwrapped_orientation",
 ]

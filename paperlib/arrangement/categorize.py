@@ -44,8 +44,12 @@ then saturation, then value, each by the a contrario modes of its 1-D histogram;
 decides which feature is looked at, so a feature that separates the types is never drowned by one
 that varies within them. Histograms, with ``bins`` (10) as the paper's resolution:
 
-* *area*: log10 of the paper's normalised area (capped at 1), ``2 * bins`` bins per 3 decades below
-  1 (bins of a factor 1.41 in area, 1.19 in size; widened down to the smallest element), MM-modes;
+* *area*: log10 of the paper's normalised area (capped at 1), bins of ``3 / (2 * bins)`` decades
+  (a factor 1.41 in area, 1.19 in size, at the default) on a fixed grid, over the bins the group's
+  values occupy, MM-modes. The uniform background is the group's own support, not a fixed range
+  of 3 decades: against 3 decades, two sizes a factor 2 apart among 40 elements are one area mode
+  and their empty bin no meaningful gap (the uniform density is too thin for either to stand out);
+  against the stretch they occupy, both are;
 * *crossings*: one bin per count, 0 to max(10, largest); each count held by meaningfully many
   elements (eq. (1) on that single bin, with the histogram's ``L (L + 1) / 2`` tests) is a mode
   of its own: a crossing is a topological event the hand does not blur, and one crossing is what
@@ -65,10 +69,24 @@ population are "gaps", and cutting them over-splits every group. Names record th
 ``"area1.crossings0"``, ``"crossings_outlier0"``; a group that is never divided is ``"all"``. The
 report is :attr:`Categorization.splits`. The method draws no random numbers.
 
-Measured limits (fig03 notebook): types that differ by one extremity only and overlap in the other
-features (cursive letters) are merged; on glyphs it was not designed on, area modes closer than
-a meaningful gap (one empty log-area bin among ~40 elements) merge; at epsilon >= 10 the
-orientation of near-round glyphs shows spurious modes.
+Gaps between values. A fixed bin grid can hide a gap: two sizes a factor 2 apart, each spread by
+a hand over 0.3 decades of area, leave 0.28 decades empty, yet each of the two 0.15-decade bins
+across it holds the edge of one population. So when the histogram of area or elongation does not
+divide a group, its sorted values are searched for the widest spacing that leaves at least
+``min_category_size`` elements on each side; the group divides there if the spacing is at least
+one bin wide (the histogram's resolution: a narrower gap is not a difference the features are
+read at) and meaningful, i.e. its expected number under the same background (``m`` values uniform
+over their range ``L``: ``(m - 1) (1 - g / L)^(m - 2)`` spacings of length ``g`` or more) is
+below ``epsilon``. Without the one-bin floor the test splits single hand-drawn types whose values
+pile up against a bound (an elongation near 1), for which the uniform background is too weak.
+
+Measured limits (fig03 notebook, seeds 0-19): types that differ only jointly, no single feature
+setting them apart by more than its resolution (a cursive 'y', 'm' and 'S': one extremity and a
+little elongation; a serif 'v' and 'L': area and elongation), are merged; on glyphs of Hershey's
+complex faces (``timesr``, ``scriptc``: stems drawn as two or three parallel strokes, serifs as
+strokes of their own) the hand's warp pushes stroke ends and corners across nearby strokes,
+which reads as crossings, so even a one-type control splits; at epsilon >= 10 the orientation
+of near-round glyphs shows spurious modes.
 
 The rest of this docstring describes the paper's recipe.
 
@@ -158,7 +176,7 @@ References
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 import pandas as pd
@@ -206,11 +224,13 @@ ORIENTATION_RADIUS = 1.0 / (4.0 * np.pi)
 METHODS = ("recursive", "paper")
 #: Features the recursive method reads, in the order it tries them at each node.
 RECURSIVE_FEATURES = ("area", "crossings", "extremities", "elongation", "orientation")
-#: The recursive method's area histogram spans this many decades of the normalised area below 1.
+#: The recursive method's area bins are ``AREA_DECADES / (2 * bins)`` decades of the normalised area wide.
 AREA_DECADES = 3.0
 #: Features that are counts: one histogram bin per count. Crossings are read count by count
 #: (each meaningful count its own mode), extremities by MM-modes (adjacent counts merge).
 _COUNT_FEATURES = ("crossings", "extremities")
+#: Continuous features whose groups may also divide at a meaningful gap between their values.
+_GAP_FEATURES = ("area", "elongation")
 
 _HISTOGRAM_RANGES = ("domain", "data")
 _ORIENTATIONS = ("unwrap", "linear", "circular")
@@ -671,6 +691,8 @@ def _split_node(name: str, members: np.ndarray, values: dict, parameters: dict) 
         if np.ptp(own) <= _EQUAL_FEATURES:
             continue
         histogram = _node_histogram(feature, own, parameters)
+        if np.unique(histogram.groups).size == 1 and feature in _GAP_FEATURES:
+            histogram = _split_at_value_gap(histogram, parameters)
         if np.unique(histogram.groups).size > 1:
             children = tuple(f"{prefix}{feature}{group[len('mode'):]}" if group.startswith("mode")
                              else f"{prefix}{feature}_{group}" for group in histogram.group_names)
@@ -712,18 +734,47 @@ def _feature_edges(feature: str, own: np.ndarray, bins: int) -> np.ndarray:
 
     Elongation: ``bins`` bins over the normalised ``[0, 1]``, the paper's. Orientation: the paper's
     bin width (a tenth of ``[0, 1]``) over the ``[0, 0.5)`` an axis occupies, so ``bins // 2``
-    bins. Area: ``2 * bins`` bins per :data:`AREA_DECADES` decades of the normalised area, from
-    1e-3 up to the cap at 1 (widened down to the smallest element if needed): bins of a factor
-    1.41 in area at the default, where the paper's linear bins put every element smaller than
-    0.5% of the surface in the first bin.
+    bins. Area: ``2 * bins`` bins per :data:`AREA_DECADES` decades of the normalised area, on a
+    grid aligned on 0 (the cap at 1), over the bins the values occupy (two at least): bins of a
+    factor 1.41 in area at the default, where the paper's linear bins put every element smaller
+    than 0.5% of the surface in the first bin.
     """
     if feature == "elongation":
         return np.linspace(0.0, 1.0, bins + 1)
     if feature == "orientation":
         return np.linspace(0.0, 0.5, max(bins // 2, 2) + 1)
     width = AREA_DECADES / (2 * bins)
-    low = min(-AREA_DECADES, np.floor(float(own.min()) / width) * width)
-    return np.linspace(low, 0.0, int(round(-low / width)) + 1)
+    low = np.floor(float(own.min()) / width)
+    high = min(np.floor(float(own.max()) / width) + 1, 0.0)
+    low = min(low, high - 2)  # a histogram has at least two bins
+    return np.arange(low, high + 0.5) * width
+
+
+def _split_at_value_gap(histogram: FeatureHistogram, parameters: dict) -> FeatureHistogram:
+    """The histogram's group divided at the most meaningful empty gap between its sorted values.
+
+    Unbinned counterpart of the paper's meaningful gap: under the background model (the ``m``
+    values uniform between the smallest and the largest, as the uniform histogram prior), the
+    expected number of the ``m - 1`` spacings at least ``g`` long is ``(m - 1) (1 - g / L)^(m - 2)``
+    (``L`` the range). A spacing whose expectation is below ``epsilon`` and that leaves at least
+    ``min_category_size`` values on each side divides the group; otherwise it is returned as is.
+    A fixed bin grid can hide such a gap: two populations a factor 2 apart in size, with a hand's
+    spread, leave an empty stretch of 0.28 decades of area that no bin of 0.15 decades falls in.
+    """
+    values = histogram.values
+    m, least = values.size, parameters["min_category_size"]
+    if m < 2 * least:
+        return histogram
+    ordered = np.sort(values)
+    spread = ordered[-1] - ordered[0]
+    spacing = np.diff(ordered)[least - 1 : m - least]  # gaps leaving >= least values on each side
+    k = int(np.argmax(spacing))
+    log10_nfa = np.log10(m - 1) + (m - 2) * np.log10(max(1.0 - spacing[k] / spread, np.finfo(float).tiny))
+    if spacing[k] < np.diff(histogram.edges).min() or log10_nfa >= np.log10(parameters["epsilon"]):
+        return histogram
+    cut = ordered[least - 1 + k]
+    return replace(histogram, groups=_read_only((values > cut).astype(np.int64)),
+                               group_names=("mode0", "mode1"))
 
 
 def _meaningful_counts(counts: np.ndarray, epsilon: float) -> HistogramModes:

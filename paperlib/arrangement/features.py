@@ -6,7 +6,7 @@ area and elongation), and normalise each before comparison:
 =====================  ===========================================  ================================
 feature                measured on                                  normalisation
 =====================  ===========================================  ================================
-area                   the element's oriented bounding box          / (5% of the reference area),
+area                   the smallest rectangle holding the ink       / (5% of the reference area),
                                                                     capped at 1 ("large")
 orientation            the box's major axis, angle in [0, pi)       / 2 pi, so in [0, 0.5)
 elongation             box major over minor extent (>= 1)           / 3, capped at 1
@@ -23,8 +23,10 @@ caps area and elongation only; counts above 10 give values above 1, and are left
 "large" and "very elongated" tags are the paper's: they record that the value was capped, and
 have no other effect on the categorisation (a capped value of 1 is what the robust PCA sees).
 
-The box is :func:`paperlib.geometry.oriented_bounding_boxes`, fitted by PCA along the strokes
-(Barla et al. 2006, section 2.1). By default it covers the pen's ink (``include_width=True``):
+The box of orientation and elongation is :func:`paperlib.geometry.oriented_bounding_boxes`,
+fitted by PCA along the strokes (Barla et al. 2006, section 2.1); the area is that of the
+smallest enclosing rectangle (:func:`minimum_box_areas`), which a hand's wobble cannot swing
+round the way it swings the PCA axes of a near-isotropic glyph. By default it covers the pen's ink (``include_width=True``):
 a straight stroke then has the area and the finite elongation it is seen with, not 0 and
 infinity, so straight hatches of different lengths differ in area.
 
@@ -78,8 +80,9 @@ viewed at.
 apart, pass through each other: one of them splits the neighbourhood of the point in two and
 the other has an arm on each side. The test works on the arms at the point, so a crossing
 through a vertex counts as one in the middle of two segments. Not crossings: T-junctions (an
-end on a curve), joins and junctions of ends, tangential touches, collinear overlaps, and loops
-shorter than ``W``, which are part of a bend, and points closer than ``t`` along a curve to the end
+end on a curve), joins and junctions of ends, tangential touches, collinear overlaps, loops
+shorter than ``W``, which are part of a bend, loops whose mean width (twice their area over their
+length) is below half of ``t``, which the ink fills (a hairpin retraced by a hand), and points closer than ``t`` along a curve to the end
 of an open curve: an end that overshoots another curve by less than the pen's width is a
 T-junction drawn by a hand, as one that stops short of it is. Crossings closer than ``t`` are one point: the
 three strokes of '*' through one point make one crossing.
@@ -118,7 +121,7 @@ import numpy as np
 import pandas as pd
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
+from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from paperlib._checks import finite_array, positive_number
 from paperlib.geometry import Element, StackedStrokes, oriented_bounding_boxes, stack_strokes
@@ -134,6 +137,7 @@ __all__ = [
     "crossing_points",
     "element_features",
     "extremity_points",
+    "minimum_box_areas",
     "normalized_area",
     "normalized_count",
     "normalized_elongation",
@@ -161,6 +165,71 @@ _VERTEX_SNAP = 1e-9
 _TIE_MARGIN = 1e-9
 #: Arms closer than this angle (radians) overlap: the curves touch or run together, they do not cross.
 _ANGLE_TOLERANCE = 1e-9
+
+
+# --------------------------------------------------------------------------- the area's box
+
+
+def minimum_box_areas(elements, *, include_width: bool = True) -> np.ndarray:
+    """Area of the smallest rectangle, at any angle, that holds each element (its ink by default).
+
+    Hurtut et al. estimate the area "on [the element's] fitted bounding box" (section 2.1). The
+    PCA box (:func:`~paperlib.geometry.oriented_bounding_boxes`) that gives orientation and
+    elongation is the wrong box for it on a drawing: for a glyph whose two principal moments are
+    close (a serif 'n', an 'x'), the hand's wobble swings the PCA axes by tens of degrees and the
+    box's area with them, by up to x1.4 (measured on hand-drawn ``rowmans`` 'n': a log10-area
+    spread of 0.076 against 0.034 for this box), which blurs area categories that are a factor 2
+    in size apart. The smallest enclosing rectangle does not depend on an axis estimate.
+
+    Parameters
+    ----------
+    elements : sequence of Element or StackedStrokes
+        At least one element.
+    include_width : bool, optional
+        If true (default), the rectangle holds the pen's ink: each side is widened by the
+        element's widest pen (its skeleton dilated by the largest half-width).
+
+    Returns
+    -------
+    ndarray of float64, shape (n_elements,)
+        The rectangles' areas, in the squared units of the coordinates.
+
+    Notes
+    -----
+    Rotating calipers: the product of the two widths, each widened by the pen, is concave in the
+    angle between two consecutive edge directions of the convex hull (Freeman and Shapira 1975,
+    whose argument holds for widths plus a constant), so its minimum is at one of those
+    directions; every direction of the hull is tried.
+    """
+    stack = elements if isinstance(elements, StackedStrokes) else stack_strokes(elements)
+    offsets = stack.element_vertex_offsets
+    half_pen = np.zeros(stack.n_elements)
+    if include_width:
+        np.maximum.at(half_pen, stack.stroke_element, stack.stroke_width / 2.0)
+    return np.array([_smallest_rectangle_area(stack.vertices[offsets[e] : offsets[e + 1]], 2.0 * half_pen[e])
+                     for e in range(stack.n_elements)])
+
+
+def _smallest_rectangle_area(points: np.ndarray, pen: float) -> float:
+    """Smallest ``(width + pen) * (height + pen)`` over the edge directions of the points' hull."""
+    directions = _hull_edge_directions(points)
+    along = points @ directions.T
+    across = points @ np.column_stack([-directions[:, 1], directions[:, 0]]).T
+    return float(np.min((np.ptp(along, axis=0) + pen) * (np.ptp(across, axis=0) + pen)))
+
+
+def _hull_edge_directions(points: np.ndarray) -> np.ndarray:
+    """Unit directions of the convex hull's edges; one direction for collinear or single points."""
+    try:
+        hull = ConvexHull(points)
+    except QhullError:  # fewer than three points, or all on one line
+        chord = points - points[0]
+        far = chord[np.argmax(np.einsum("ij,ij->i", chord, chord))]
+        length = np.hypot(*far)
+        return (far / length)[None, :] if length > 0 else np.array([[1.0, 0.0]])
+    ring = points[hull.vertices]
+    edges = np.roll(ring, -1, axis=0) - ring
+    return edges / np.hypot(edges[:, 0], edges[:, 1])[:, None]
 
 
 # --------------------------------------------------------------------------- normalisations
@@ -308,7 +377,8 @@ def element_features(
     curves = _build_curves(stack, curvature_scale, corner_angle, join_tolerance)
     extremities = np.bincount(_extremities(curves)[1], minlength=stack.n_elements)
     crossings = np.bincount(_crossings(curves)[1], minlength=stack.n_elements)
-    areas, angles, elongations = boxes.areas, boxes.angles, boxes.elongations
+    areas = minimum_box_areas(stack, include_width=include_width)
+    angles, elongations = boxes.angles, boxes.elongations
     table = pd.DataFrame(
         {
             "area": normalized_area(areas, reference_area),
@@ -791,6 +861,7 @@ def _crossings(curves: _Curves):
     t, u, proper = _line_parameters(curves.frame, first, second)
     first, second, t, u = first[proper], second[proper], t[proper], u[proper]
     crossing = _arms_alternate(curves, first, t, second, u) & ~_same_bend(curves, first, t, second, u)
+    crossing[crossing] = ~_inked_loop(curves, first[crossing], t[crossing], second[crossing], u[crossing])
     crossing &= ~(_near_an_end(curves, first, t) | _near_an_end(curves, second, u))
     first, t = first[crossing], t[crossing]
     element = curves.stack.vertex_element[first]
@@ -870,6 +941,39 @@ def _same_bend(curves: _Curves, first, t, second, u) -> np.ndarray:
     length = curves.chain_length[chain_a]
     gap = np.where(curves.chain_closed[chain_a], np.minimum(gap, length - gap), gap)
     return (chain_a == chain_b) & _closer(gap, curves.window[curves.chain_element[chain_a]])
+
+
+def _inked_loop(curves: _Curves, first, t, second, u) -> np.ndarray:
+    """True where both points lie on one chain and the loop between them is filled by the ink.
+
+    The loop (the shorter of the two, on a closed chain) is the curve's arc from one point to the
+    other, closed by the point itself; its mean width is ``2 A / P`` (area over half the arc
+    length; a round loop's radius). Below half the join tolerance (the pen's width at least), a
+    round loop's hole is covered by the pen and the two sides of a thin one are one line of ink:
+    a hairpin retraced by a wobbling hand (the stem of a cursive 'a' drawn up and back down)
+    crosses itself where the eye sees a cusp and no hole. Over the categorization test matrix
+    (all families, seed 0) the loops of self-crossings fall in two clusters, 0.02-0.3 and
+    1.8-6.8 times the tolerance (hairpins, and the loops of '8', 'g', '&', cursive 'l'), on
+    either side of the threshold.
+    """
+    chain = curves.entry_chain[curves.vertex_entry[first]]
+    same = chain == curves.entry_chain[curves.vertex_entry[second]]
+    inked = np.zeros(first.size, dtype=bool)
+    arcs = np.sort(np.column_stack([_arc_at(curves, first, t), _arc_at(curves, second, u)]), axis=1)
+    for k in np.flatnonzero(same):
+        c, (low, high) = chain[k], arcs[k]
+        entries = np.arange(curves.chain_offsets[c], curves.chain_offsets[c + 1])
+        arc, points = curves.entry_arc[entries], curves.frame[curves.entry_vertex[entries]]
+        length = curves.chain_length[c]
+        inside = (arc > low) & (arc < high)
+        if curves.chain_closed[c] and high - low > length - high + low:  # the other way round is shorter
+            inside, low, high = ~inside & (arc != low) & (arc != high), high, low + length
+        loop = np.concatenate([points[inside & (arc >= low)], points[inside & (arc < low)]])
+        corner = _point_at_arc(curves, np.array([c]), np.array([np.mod(low, length)]), curves.frame)
+        ring = np.concatenate([corner, loop])
+        area = 0.5 * abs(np.dot(ring[:, 0], np.roll(ring[:, 1], -1)) - np.dot(ring[:, 1], np.roll(ring[:, 0], -1)))
+        inked[k] = _closer(2.0 * area / (high - low), curves.tolerance[curves.chain_element[c]] / 2.0)
+    return inked
 
 
 def _near_an_end(curves: _Curves, segment_start, t) -> np.ndarray:

@@ -42,10 +42,13 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in three families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in five families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
-(it failed, which led to the revision described in ``paperlib.arrangement.categorize``); and
-``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it.
+(it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
+``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
+``"held_out_3"``, a serif and another handwriting face, fixed before the next revision (the area's
+box and histogram, gaps between values, ink-filled loops) and checked after it; and
+``"held_out_4"``, Hershey's complex faces, fixed once that revision was final and checked once.
 
 Written by hand: no library draws glyphs with a hand's variation.
 
@@ -386,9 +389,37 @@ HELD_OUT_2_CASES = {
     "held2_control_y": ("one type (control)", (("y", 0.05, 60),)),
     "held2_control_script_e": ("one type, a cursive glyph (control)", (("e", 0.05, 50),)),
 }
-_FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES}
+#: Third held-out family, fixed before the revision of issue 27 (the area's box and histogram, gaps
+#: between values, ink-filled loops) and checked after it: a serif face (``rowmans``) and another
+#: handwriting face (``cursive``).
+HELD_OUT_3_CASES = {
+    "held3_area_2": ("area (sizes x2)", (("n", 0.035, 35), ("n", 0.07, 25, "N-big"))),
+    "held3_area_3": ("area (three sizes)", (("a", 0.03, 30), ("a", 0.06, 25, "A2"), ("a", 0.12, 15, "A3"))),
+    "held3_topology_3": ("extremities and crossings", (("O", 0.06, 30), ("X", 0.06, 30), ("C", 0.06, 30))),
+    "held3_elongation_2": ("elongation", (("I", 0.07, 30), ("O", 0.07, 30))),
+    "held3_mixed_4": ("area, topology and elongation", (("v", 0.05, 25), ("t", 0.05, 25), ("o", 0.04, 25),
+                                                          ("L", 0.08, 20))),
+    "held3_control_g": ("one type, a cursive glyph (control)", (("g", 0.05, 50),)),
+}
+#: Fourth held-out family, fixed once the revision checked on the third was final and checked once:
+#: a complex serif face (``timesr``) and a complex script (``scriptc``).
+HELD_OUT_4_CASES = {
+    "held4_area_2": ("area (sizes x2.2)", (("h", 0.035, 35), ("h", 0.077, 25, "H-big"))),
+    "held4_topology_3": ("extremities and crossings", (("c", 0.05, 30), ("t", 0.05, 30), ("o", 0.05, 30))),
+    "held4_elongation_2": ("elongation", (("i", 0.07, 30), ("n", 0.07, 30))),
+    "held4_mixed_4": ("area, topology and elongation", (("z", 0.05, 25), ("x", 0.05, 25), ("l", 0.07, 20),
+                                                          ("O", 0.1, 15))),
+    "held4_control_w": ("one type (control)", (("w", 0.05, 50),)),
+    "held4_control_script_d": ("one type, a cursive glyph (control)", (("d", 0.05, 50),)),
+}
+_FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
+             "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
-                   "held2_control_script_e": "scripts"}
+                   "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
+                   "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
+                   "held3_control_g": "cursive", "held4_area_2": "timesr", "held4_topology_3": "scriptc",
+                   "held4_elongation_2": "timesr", "held4_mixed_4": "timesr", "held4_control_w": "timesr",
+                   "held4_control_script_d": "scriptc"}
 
 
 def categorization_cases(family: str = "main", rng=None) -> dict:
@@ -396,11 +427,13 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2"}
+    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
         ``"held_out_2"``: :data:`HELD_OUT_2_CASES`, yet other glyphs.
+        ``"held_out_3"``: :data:`HELD_OUT_3_CASES`, a serif and another handwriting face.
+        ``"held_out_4"``: :data:`HELD_OUT_4_CASES`, a complex serif and a complex script face.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
         another is added after it.
