@@ -124,7 +124,7 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 from paperlib._checks import finite_array, positive_number
-from paperlib.geometry import Element, StackedStrokes, oriented_bounding_boxes, stack_strokes
+from paperlib.geometry import Element, StackedStrokes, oriented_bounding_boxes, signed_area, stack_strokes
 
 __all__ = [
     "AREA_FRACTION",
@@ -971,7 +971,7 @@ def _inked_loop(curves: _Curves, first, t, second, u) -> np.ndarray:
         loop = np.concatenate([points[inside & (arc >= low)], points[inside & (arc < low)]])
         corner = _point_at_arc(curves, np.array([c]), np.array([np.mod(low, length)]), curves.frame)
         ring = np.concatenate([corner, loop])
-        area = 0.5 * abs(np.dot(ring[:, 0], np.roll(ring[:, 1], -1)) - np.dot(ring[:, 1], np.roll(ring[:, 0], -1)))
+        area = abs(signed_area(ring))
         inked[k] = _closer(2.0 * area / (high - low), curves.tolerance[curves.chain_element[c]] / 2.0)
     return inked
 
