@@ -368,6 +368,61 @@ def test_hand_drawn_cursive_a_has_no_crossing():
     assert element_features(glyphs, 1.0)["crossings_raw"].tolist() == [0] * 20
 
 
+# --------------------------------------------------------------------------- crossings at the pen's scale
+
+
+PEN = 0.05
+
+
+def stem_poking_through_serif(overshoot, corner_gap=0.02):
+    """A serif bar and a 'V' of two strokes whose tops join within the pen, one poking through the bar."""
+    serif = Stroke([(-1.0, 0.0), (1.0, 0.0)], width=PEN)
+    left = Stroke([(0.3, -2.0), (0.0, overshoot)], width=PEN)
+    right = Stroke([(corner_gap, -0.01), (0.5, -2.0)], width=PEN)
+    return Element([serif, left, right])
+
+
+def test_a_joined_corner_poking_through_a_stroke_is_a_junction():
+    # The corner's two arms both stay below the bar: the raw curves cross twice, the eye sees a T.
+    assert len(crossing_points(stem_poking_through_serif(0.03))) == 0
+    # The same corner pushed well through the bar (arms on both sides at twice the pen): crossings.
+    assert len(crossing_points(stem_poking_through_serif(0.6, corner_gap=0.6))) >= 1
+
+
+def branch(lean):
+    """A stroke leaving a long bar at its middle at a shallow angle and crossing it after 0.3."""
+    bar = Stroke([(-2.0, 0.0), (2.0, 0.0)], width=PEN)
+    offshoot = Stroke([(0.0, 0.0), (0.15, lean), (0.3, -0.001), (1.5, -1.5)], width=PEN)
+    return Element([bar, offshoot])
+
+
+def test_a_branch_running_inside_the_ink_before_it_crosses_is_a_junction():
+    assert len(crossing_points(branch(0.01))) == 0  # within half a pen of the bar until it crosses
+    assert len(crossing_points(branch(0.2))) == 1  # a visible loop before it crosses: a crossing
+
+
+def bar_across_parallel_lines(spacing):
+    """A bar across a stem drawn as two parallel lines ``spacing`` apart (a complex face's thick stroke)."""
+    lines = [Stroke([(x, -1.0), (x, 1.0)], width=PEN) for x in (0.0, spacing)]
+    return Element([Stroke([(-1.0, 0.1), (1.0, 0.0)], width=PEN), *lines])
+
+
+def test_a_stroke_crossing_a_doubled_stem_crosses_once():
+    assert len(crossing_points(bar_across_parallel_lines(0.06))) == 1  # the inks of the two lines touch
+    assert len(crossing_points(bar_across_parallel_lines(0.6))) == 2  # two stems, two crossings
+
+
+@pytest.mark.parametrize(("char", "font"), [("w", "timesr"), ("n", "timesr"), ("t", "scriptc"), ("x", "timesr")])
+def test_hand_drawn_complex_faces_keep_their_crossings(char, font):
+    from paperlib.datasets.drawn_glyphs import drawn_glyph
+
+    rng = np.random.default_rng(2)
+    glyphs = [drawn_glyph(char, 0.05, angle=rng.uniform(0, 360), font=font, rng=rng) for _ in range(20)]
+    crossings = element_features(glyphs, 1.0)["crossings_raw"]
+    expected = {"w": 0, "n": 0, "t": 1, "x": 1}[char]
+    assert crossings.tolist() == [expected] * 20
+
+
 # --------------------------------------------------------------------------- the area's box
 
 

@@ -82,11 +82,14 @@ pile up against a bound (an elongation near 1), for which the uniform background
 
 Measured limits (fig03 notebook, seeds 0-19): types that differ only jointly, no single feature
 setting them apart by more than its resolution (a cursive 'y', 'm' and 'S': one extremity and a
-little elongation; a serif 'v' and 'L': area and elongation), are merged; on glyphs of Hershey's
-complex faces (``timesr``, ``scriptc``: stems drawn as two or three parallel strokes, serifs as
-strokes of their own) the hand's warp pushes stroke ends and corners across nearby strokes,
-which reads as crossings, so even a one-type control splits; at epsilon >= 10 the orientation
-of near-round glyphs shows spurious modes.
+little elongation; a serif 'v' and 'L': area and elongation), are merged; a single copy drawn
+with more bends than the rest of its type is set apart as the paper's outlier category; on
+Hershey's bold and triplex faces (``timesrb``, ``timesib``, ``rowmant``: a thick stroke drawn as
+three or four parallel pen lines) the features count the lines' ends and mutual crossings one by
+one, so even a one-type control splits (the complex faces ``timesr`` and ``scriptc``, whose stems
+are two parallel lines, hold since crossings are judged at the pen's scale, see
+:mod:`paperlib.arrangement.features`); at epsilon >= 10 the orientation of near-round glyphs shows
+spurious modes.
 
 The rest of this docstring describes the paper's recipe.
 

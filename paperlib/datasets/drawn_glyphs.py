@@ -42,13 +42,18 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in five families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in seven families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
 ``"held_out_3"``, a serif and another handwriting face, fixed before the next revision (the area's
 box and histogram, gaps between values, ink-filled loops) and checked after it; and
-``"held_out_4"``, Hershey's complex faces, fixed once that revision was final and checked once.
+``"held_out_4"``, Hershey's complex faces, fixed once that revision was final and checked once (it
+failed, which led to judging crossings at the pen's scale); and ``"held_out_5"``, Times italic and
+two double-stroke faces, fixed before that revision and checked once after it (it failed on Times
+italic 'a', which led to reading crossings in and out of another stroke's ink as a touch); and
+``"held_out_6"``, triplex, bold and blackletter faces, fixed before that last revision and checked
+once after it.
 
 Written by hand: no library draws glyphs with a hand's variation.
 
@@ -412,14 +417,44 @@ HELD_OUT_4_CASES = {
     "held4_control_w": ("one type (control)", (("w", 0.05, 50),)),
     "held4_control_script_d": ("one type, a cursive glyph (control)", (("d", 0.05, 50),)),
 }
+#: Fifth held-out family, fixed after the fourth had failed and before the crossings were judged at the
+#: pen's scale (issue 27); checked once that revision was final: Times italic (``timesi``), a
+#: double-stroke sans (``futuram``) and a double-stroke serif (``rowmand``).
+HELD_OUT_5_CASES = {
+    "held5_area_2": ("area (sizes x2.3)", (("e", 0.035, 35), ("e", 0.08, 25, "E-big"))),
+    "held5_topology_3": ("extremities and crossings", (("u", 0.05, 30), ("x", 0.05, 30), ("o", 0.05, 30))),
+    "held5_elongation_2": ("elongation and topology", (("1", 0.07, 30), ("0", 0.07, 30))),
+    "held5_mixed_4": ("area, topology and elongation", (("a", 0.05, 25), ("f", 0.06, 25), ("4", 0.05, 20),
+                                                          ("Q", 0.1, 15))),
+    "held5_control_m": ("one type (control)", (("m", 0.05, 50),)),
+    "held5_control_italic_k": ("one type, an italic glyph (control)", (("k", 0.05, 50),)),
+}
+#: Sixth held-out family, fixed after the fifth had failed (Times italic 'a', whose bowl runs along its
+#: stem) and before crossings in and out of another stroke's ink were read as a touch; checked once
+#: after: Roman triplex (``rowmant``), Times bold and bold italic (``timesrb``, ``timesib``) and a
+#: blackletter (``gothiceng``).
+HELD_OUT_6_CASES = {
+    "held6_area_2": ("area (sizes x2.1)", (("b", 0.035, 35), ("b", 0.075, 25, "B-big"))),
+    "held6_topology_3": ("extremities and crossings", (("c", 0.05, 30), ("x", 0.05, 30), ("o", 0.05, 30))),
+    "held6_elongation_2": ("elongation and topology", (("j", 0.07, 30), ("e", 0.07, 30))),
+    "held6_mixed_4": ("area, topology and elongation", (("a", 0.05, 25), ("k", 0.05, 25), ("8", 0.05, 20),
+                                                          ("W", 0.1, 15))),
+    "held6_control_s": ("one type (control)", (("s", 0.05, 50),)),
+    "held6_control_gothic_o": ("one type, a blackletter glyph (control)", (("o", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
-             "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES}
+             "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
+             "held_out_6": HELD_OUT_6_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
                    "held3_control_g": "cursive", "held4_area_2": "timesr", "held4_topology_3": "scriptc",
                    "held4_elongation_2": "timesr", "held4_mixed_4": "timesr", "held4_control_w": "timesr",
-                   "held4_control_script_d": "scriptc"}
+                   "held4_control_script_d": "scriptc", "held5_area_2": "timesi", "held5_topology_3": "futuram",
+                   "held5_elongation_2": "rowmand", "held5_mixed_4": "timesi", "held5_control_m": "rowmand",
+                   "held5_control_italic_k": "timesi", "held6_area_2": "rowmant", "held6_topology_3": "timesrb",
+                   "held6_elongation_2": "rowmant", "held6_mixed_4": "timesib", "held6_control_s": "timesrb",
+                   "held6_control_gothic_o": "gothiceng"}
 
 
 def categorization_cases(family: str = "main", rng=None) -> dict:
@@ -427,13 +462,15 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4"}
+    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4", "held_out_5", "held_out_6"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
         ``"held_out_2"``: :data:`HELD_OUT_2_CASES`, yet other glyphs.
         ``"held_out_3"``: :data:`HELD_OUT_3_CASES`, a serif and another handwriting face.
         ``"held_out_4"``: :data:`HELD_OUT_4_CASES`, a complex serif and a complex script face.
+        ``"held_out_5"``: :data:`HELD_OUT_5_CASES`, Times italic and two double-stroke faces.
+        ``"held_out_6"``: :data:`HELD_OUT_6_CASES`, triplex, bold and blackletter faces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
         another is added after it.
