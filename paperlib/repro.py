@@ -3,7 +3,8 @@
 A notebook calls :func:`start` once with its papermill parameters, then
 :func:`record` for every quantitative claim and :func:`save_figure` for every figure.
 Everything lands in ``out_dir`` (by convention ``figures/<notebook-stem>/``):
-``stats.json`` holds the run's seed, quality and statistics. :func:`check_stats`
+``stats.json`` holds the run's seed, quality and statistics, and the numba kernels the run had
+used by its last output (``numba_kernels``, what the determinism rerun must cover). :func:`check_stats`
 compares those files with ``tests/expected_stats.toml``.
 
 The expected file has one table per notebook and statistic::
@@ -57,9 +58,11 @@ import pandas as pd
 
 from ._atomic import atomic_path
 from ._checks import check_choice, file_path, instance_of, load_json
+from ._kernels_used import kernels_used
 
 __all__ = [
     "QUALITIES",
+    "KERNELS_KEY",
     "STATS_FILE",
     "atomic_path",
     "check_stats",
@@ -74,6 +77,8 @@ __all__ = [
 
 QUALITIES = ("ci", "paper")
 STATS_FILE = "stats.json"
+#: Key of ``stats.json`` listing the paperlib numba kernels the run used (:mod:`paperlib._kernels_used`).
+KERNELS_KEY = "numba_kernels"
 TIME_PREFIX = "time_"
 CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "kind", "source", "status", "ok", "reason"]
 #: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time,
@@ -261,8 +266,18 @@ def record(name: str, value):
         raise ValueError(f"statistic name {name!r} must start with a letter and use only letters, digits, _ . -")
     data = load_stats(run.out_dir / STATS_FILE)
     data["statistics"][name] = _to_json_value(value, name)
+    data[KERNELS_KEY] = kernels_used()
     _write_json(run.out_dir / STATS_FILE, data)
     return value
+
+
+def _note_kernels(run: _Run) -> None:
+    """Bring the run's list of used numba kernels up to date (after an output that may have needed more)."""
+    data = load_stats(run.out_dir / STATS_FILE)
+    kernels = kernels_used()
+    if data.get(KERNELS_KEY) != kernels:
+        data[KERNELS_KEY] = kernels
+        _write_json(run.out_dir / STATS_FILE, data)
 
 
 def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Path]:
@@ -298,6 +313,7 @@ def save_figure(fig, name: str, *, svg: bool = False, dpi: int = 100) -> list[Pa
         with atomic_path(target) as temporary, matplotlib.rc_context({"svg.hashsalt": "paperlib"}):
             fig.savefig(temporary, format=extension, dpi=dpi, metadata=metadata, bbox_inches="tight")
         written.append(target)
+    _note_kernels(run)
     return written
 
 

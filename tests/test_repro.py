@@ -293,3 +293,36 @@ def test_requires_skips_an_optional_comparison_whose_package_is_absent(tmp_path)
     expected.write_text('[nb.a]\nkind = "truth"\nvalue = 1.0\nrequires = "not a package"\nsource = "by construction"\n')
     with pytest.raises(ValueError, match="requires"):
         repro.load_expected(expected)
+
+
+# --------------------------------------------------------------------------- numba kernels used
+
+_KERNELS_SCRIPT = """
+import json, sys
+import numpy as np
+from paperlib import repro
+import paperlib.sketch._kernels as kernels
+from paperlib._kernels_used import kernels_used
+before = kernels_used()
+repro.start(sys.argv[1], seed=0, quality="ci")
+kernels._wrap(1.0)
+repro.record("a", 1)
+after_record = json.load(open(sys.argv[1] + "/stats.json"))["numba_kernels"]
+kernels.rank_by_similarity(np.zeros((3, 2)), np.ones(2), np.array([[0, 1, 2]] * 3), 1.0, 2)
+print(json.dumps({"before": before, "after_record": after_record, "now": kernels_used()}))
+"""
+
+
+def test_a_run_records_the_numba_kernels_it_used_with_their_callees(tmp_path):
+    import subprocess
+    import sys
+
+    folder = tmp_path / "nb"
+    completed = subprocess.run([sys.executable, "-c", _KERNELS_SCRIPT, str(folder)], capture_output=True, text=True,
+                               check=True, timeout=600)
+    seen = json.loads(completed.stdout.strip().splitlines()[-1])
+    assert seen["before"] == []  # importing compiles nothing
+    assert seen["after_record"] == ["paperlib.sketch._kernels._wrap"]
+    # rank_by_similarity calls _direction_difference: listed even when its code came from the cache
+    assert seen["now"] == sorted(["paperlib.sketch._kernels._wrap", "paperlib.sketch._kernels.rank_by_similarity",
+                                  "paperlib.sketch._kernels._direction_difference"])
