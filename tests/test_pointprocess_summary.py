@@ -411,3 +411,29 @@ def test_kcross_needs_points_of_both_types():
         Kcross(pattern, "a", "b")
     with pytest.raises(ValueError, match="at least 2 points"):
         Kcross(PointPattern(pattern.points, pattern.window, marks=[0, 1, 1], categories=("a", "b")), "a", "a")
+
+
+def _exact_smooth(self, binned):
+    """The density's circular correlation with its kernel summed exactly (math.fsum), in place of the FFT."""
+    import math
+
+    size = self.grid_size
+    offsets = np.linspace(0.0, 2 * (self.high - self.low), 2 * size)
+    offsets[size + 1 :] = -offsets[size - 1 : 0 : -1]
+    halfwidth = self.bw * np.sqrt(5.0)
+    kernel = np.where(np.abs(offsets) < halfwidth, 0.75 * (1 - (offsets / halfwidth) ** 2) / halfwidth, 0.0)
+    support = np.flatnonzero(kernel)
+    smoothed = np.array([math.fsum(binned[(i + support) % (2 * size)] * kernel[support]) for i in range(size)])
+    return np.interp(self.r, np.linspace(self.low, self.high, size), np.maximum(smoothed, 0.0))
+
+
+def test_pcf_fft_is_within_rounding_of_the_exact_kernel_sum(monkeypatch):
+    """Measured at 1e3 CSR points: ours 1.6-2.4e-14 (relative) from the exactly summed convolution,
+    spatstat's 3.6-4.0e-14, so the two agree to 2.4-6.1e-14; 1e-14 against spatstat is below its own rounding."""
+    pattern = PointPattern(np.random.default_rng(5).random((1000, 2)), Window.rectangle())
+    fast = pcf(pattern)
+    monkeypatch.setattr(summary._EpanechnikovDensity, "smooth", _exact_smooth)
+    exact = pcf(pattern)
+    for column in ("trans", "iso"):
+        a, e = fast[column].to_numpy()[1:], exact[column].to_numpy()[1:]
+        assert np.max(np.abs(a - e) / np.abs(e)) < 5e-14
