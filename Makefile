@@ -1,5 +1,5 @@
 # paperlib: every command bootstraps .venv from pyproject.toml on first use.
-#   make test        ruff, then pytest including the notebooks run through papermill (CI runs this)
+#   make test        ruff, then pytest: the tests on $(JOBS) workers, then the notebooks through papermill (CI runs this)
 #   make reproduce   every notebook at paper quality -> figures/ and figures/INDEX.md
 #   make bench       speed measurements -> benchmarks/results.json
 #   make fuzz        the full fuzz campaign (>= 10,000 Hypothesis inputs) -> build/fuzz/summary.md
@@ -23,8 +23,12 @@ $(STAMP): pyproject.toml
 lint: $(STAMP)
 	$(BIN)/ruff check paperlib tests benchmarks docs
 
+# The tests that execute no notebook run on $(JOBS) workers (each test file on one worker: a file's
+# fixtures, such as the documentation site, are built once); the notebook passes then run their
+# notebooks $(JOBS) at a time. `pytest` alone runs everything in one process.
 test: lint
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(JOBS) --dist loadfile -m "not notebooks"
+	$(BIN)/python -m pytest -m notebooks
 
 reproduce: $(STAMP)
 	$(BIN)/python -m paperlib reproduce --quality paper --jobs $(JOBS)
