@@ -437,3 +437,40 @@ def test_pcf_fft_is_within_rounding_of_the_exact_kernel_sum(monkeypatch):
     for column in ("trans", "iso"):
         a, e = fast[column].to_numpy()[1:], exact[column].to_numpy()[1:]
         assert np.max(np.abs(a - e) / np.abs(e)) < 5e-14
+
+
+def _kernel_arguments(n=20000):
+    rng = np.random.default_rng(3)
+    points = rng.random((n, 2)) * [2.0, 1.0]
+    r = np.linspace(0, 0.1, 201)
+    b = np.minimum(np.minimum(points[:, 0], 2 - points[:, 0]), np.minimum(points[:, 1], 1 - points[:, 1]))
+    return (points, b, _pairs.border_last_bins(b, r, True), r, True, np.array([0.0, 2.0, 0.0, 1.0]),
+            True, True, True, True, _pairs.MAX_EDGE_WEIGHT)
+
+
+def test_parallel_pair_kernel_equals_its_serial_twin_bit_for_bit():
+    arguments = _kernel_arguments()
+    np.testing.assert_array_equal(_pairs._self_pair_sums_parallel(*arguments), _pairs._self_pair_sums_serial(*arguments))
+
+
+_THREADS_SCRIPT = """
+import hashlib, numpy as np, sys
+sys.path.insert(0, sys.argv[1])
+from test_pointprocess_summary import _kernel_arguments
+from paperlib.pointprocess import _pairs
+print(hashlib.sha256(_pairs._self_pair_sums_parallel(*_kernel_arguments()).tobytes()).hexdigest())
+"""
+
+
+def test_pair_sums_do_not_depend_on_the_number_of_threads():
+    import os
+    import subprocess
+    import sys
+
+    digests = set()
+    for threads in ("1", "2"):
+        environment = {**os.environ, "NUMBA_NUM_THREADS": threads}
+        done = subprocess.run([sys.executable, "-c", _THREADS_SCRIPT, str(Path(__file__).parent)], env=environment,
+                              capture_output=True, text=True, check=True, timeout=600)
+        digests.add(done.stdout.strip().splitlines()[-1])
+    assert len(digests) == 1

@@ -59,6 +59,7 @@ References
 
 from __future__ import annotations
 
+import os
 from typing import Iterator, NamedTuple
 
 import numba
@@ -693,57 +694,113 @@ def _rectangle_translate_weight(dx, dy, width, height, trim):  # pragma: no cove
     return min(width * height / ((width - abs(dx)) * (height - abs(dy))), trim)
 
 
+#: The rows of cells are shared among this many blocks, each summed on its own and the blocks then
+#: added in order: the sums do not depend on how many threads take the blocks, or whether any do.
+_ROW_BLOCKS = 64
+#: The process that imported this module. A process forked from it after a parallel kernel ran would
+#: inherit a GNU OpenMP that cannot run in it (numba terminates it): it runs the serial twin instead.
+_IMPORTING_PROCESS = os.getpid()
+
+
+def _self_pair_sums(*arguments):
+    """Pairs within one pattern: the parallel kernel, or its serial twin in a forked process (same sums)."""
+    if os.getpid() == _IMPORTING_PROCESS:
+        return _self_pair_sums_parallel(*arguments)
+    return _self_pair_sums_serial(*arguments)
+
+
+@numba.njit(cache=True, parallel=True)
+def _self_pair_sums_parallel(points, b, last_bin, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                             trim):  # pragma: no cover - numba
+    """Each unordered pair once (half stencil), filed in both orders: blocks of rows of cells in parallel."""
+    x, y, bs, ls, starts, nx, ny, partial = _blocks_of_rows(points, b, last_bin, r, frame)
+    for block in numba.prange(partial.shape[0]):
+        _block_pair_sums(block, x, y, bs, ls, starts, nx, ny, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                         trim, partial[block])
+    return _added_in_order(partial)
+
+
 @numba.njit(cache=True)
-def _self_pair_sums(points, b, last_bin, r, closed, frame, do_un, do_border, do_iso, do_trans,
-                    trim):  # pragma: no cover - numba
-    """Pairs within one pattern: each unordered pair once (half stencil), filed in both orders."""
+def _self_pair_sums_serial(points, b, last_bin, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                           trim):  # pragma: no cover - numba
+    """:func:`_self_pair_sums_parallel` block after block in one thread: the same sums, bit for bit."""
+    x, y, bs, ls, starts, nx, ny, partial = _blocks_of_rows(points, b, last_bin, r, frame)
+    for block in range(partial.shape[0]):
+        _block_pair_sums(block, x, y, bs, ls, starts, nx, ny, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                         trim, partial[block])
+    return _added_in_order(partial)
+
+
+@numba.njit
+def _blocks_of_rows(points, b, last_bin, r, frame):  # pragma: no cover - numba
+    """The points sorted into cells (coordinates, border distances and last bins in cell order), and
+    zeroed sums for each of the ``min(rows, _ROW_BLOCKS)`` blocks of rows."""
+    order, starts, nx, ny = _cell_grid(points, frame, r[len(r) - 1])
+    partial = np.zeros((min(ny, _ROW_BLOCKS), N_CHANNELS, len(r) + 1))
+    return points[order, 0], points[order, 1], b[order], last_bin[order], starts, nx, ny, partial
+
+
+@numba.njit
+def _added_in_order(partial):  # pragma: no cover - numba
+    sums = np.zeros(partial.shape[1:])
+    for block in range(partial.shape[0]):
+        sums += partial[block]
+    return sums
+
+
+@numba.njit
+def _block_pair_sums(block, x, y, bs, ls, starts, nx, ny, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                     trim, sums):  # pragma: no cover - numba
+    """Add the pairs of the rows of cells of one block to ``sums``."""
+    blocks = min(ny, _ROW_BLOCKS)
+    for cy in range(block * ny // blocks, (block + 1) * ny // blocks):
+        _row_pair_sums(cy, x, y, bs, ls, starts, nx, ny, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                       trim, sums)
+
+
+@numba.njit
+def _row_pair_sums(cy, x, y, bs, ls, starts, nx, ny, r, closed, frame, do_un, do_border, do_iso, do_trans,
+                   trim, sums):  # pragma: no cover - numba
+    """Add the pairs of the points of one row of cells with the half neighbourhood after them to ``sums``."""
     n_r = len(r)
     step = r[n_r - 1] / (n_r - 1)
-    sums = np.zeros((N_CHANNELS, n_r + 1))
     x0, x1, y0, y1 = frame[0], frame[1], frame[2], frame[3]
-    order, starts, nx, ny = _cell_grid(points, frame, r[n_r - 1])
-    x, y, bs, ls = points[order, 0], points[order, 1], b[order], last_bin[order]
-    border_pairs = np.zeros(len(x))  # pairs each point enters the border estimate with
     reach = _CELLS_PER_REACH
-    for cy in range(ny):
-        for cx in range(nx):
-            first, stop = starts[cy * nx + cx], starts[cy * nx + cx + 1]
-            # the cell itself and the half of its neighbourhood after it: each cell pair once
-            for oy in range(-reach, reach + 1):
-                for ox in range(0, reach + 1):
-                    ncx, ncy = cx + ox, cy + oy
-                    if (ox == 0 and oy < 0) or ncx >= nx or ncy < 0 or ncy >= ny:
-                        continue
-                    own_cell = ox == 0 and oy == 0
-                    other_first, other_stop = starts[ncy * nx + ncx], starts[ncy * nx + ncx + 1]
-                    for p in range(first, stop):
-                        xp, yp = x[p], y[p]
-                        for q in range(p + 1 if own_cell else other_first, other_stop):
-                            dx = x[q] - xp
-                            dy = y[q] - yp
-                            d2 = dx * dx + dy * dy
-                            k = _bin_of(d2, r, closed, step)
-                            if k < 0:
-                                continue
-                            d = np.sqrt(d2)
-                            if do_un:
-                                sums[UN, k] += 2.0
-                            if do_trans:
-                                sums[TRANS, k] += 2.0 * _rectangle_translate_weight(dx, dy, x1 - x0, y1 - y0, trim)
-                            if do_iso:
-                                sums[ISO, k] += (_box_isotropic_weight(xp, yp, d, x0, x1, y0, y1, trim)
-                                                 + _box_isotropic_weight(x[q], y[q], d, x0, x1, y0, y1, trim))
-                            if do_border:
-                                if k <= ls[p] and d <= bs[p]:
-                                    sums[BORDER_START, k] += 1.0
-                                    border_pairs[p] += 1.0
-                                if k <= ls[q] and d <= bs[q]:
-                                    sums[BORDER_START, k] += 1.0
-                                    border_pairs[q] += 1.0
-    for p in range(len(x)):  # each point's pairs stop counting after its last bin
-        if border_pairs[p] > 0:
-            sums[BORDER_STOP, ls[p] + 1] += border_pairs[p]
-    return sums
+    for cx in range(nx):
+        first, stop = starts[cy * nx + cx], starts[cy * nx + cx + 1]
+        # the cell itself and the half of its neighbourhood after it: each cell pair once
+        for oy in range(-reach, reach + 1):
+            for ox in range(0, reach + 1):
+                ncx, ncy = cx + ox, cy + oy
+                if (ox == 0 and oy < 0) or ncx >= nx or ncy < 0 or ncy >= ny:
+                    continue
+                own_cell = ox == 0 and oy == 0
+                other_first, other_stop = starts[ncy * nx + ncx], starts[ncy * nx + ncx + 1]
+                for p in range(first, stop):
+                    xp, yp = x[p], y[p]
+                    for q in range(p + 1 if own_cell else other_first, other_stop):
+                        dx = x[q] - xp
+                        dy = y[q] - yp
+                        d2 = dx * dx + dy * dy
+                        k = _bin_of(d2, r, closed, step)
+                        if k < 0:
+                            continue
+                        d = np.sqrt(d2)
+                        if do_un:
+                            sums[UN, k] += 2.0
+                        if do_trans:
+                            sums[TRANS, k] += 2.0 * _rectangle_translate_weight(dx, dy, x1 - x0, y1 - y0, trim)
+                        if do_iso:
+                            sums[ISO, k] += (_box_isotropic_weight(xp, yp, d, x0, x1, y0, y1, trim)
+                                             + _box_isotropic_weight(x[q], y[q], d, x0, x1, y0, y1, trim))
+                        if do_border:
+                            # a point's pairs stop counting after its last bin (whole numbers: exact in any order)
+                            if k <= ls[p] and d <= bs[p]:
+                                sums[BORDER_START, k] += 1.0
+                                sums[BORDER_STOP, ls[p] + 1] += 1.0
+                            if k <= ls[q] and d <= bs[q]:
+                                sums[BORDER_START, k] += 1.0
+                                sums[BORDER_STOP, ls[q] + 1] += 1.0
 
 
 @numba.njit(cache=True)
