@@ -187,7 +187,7 @@ def our_case(call: str):
 
 
 # spatstat 3.0's pcf.ppp spends most of its time in deparse() (of the pair weights, through
-# density's call): 55 % of 1.9 s at 1e3 points (Rprof), 159 s per call at 1e4 points (1e7 pairs);
+# density's call): 55 % of 1.9 s at 1e3 points (Rprof), 159 s per call at 1e4 points under load (24 s quiet; 1e7 pairs);
 # 1e5 points have ten times the pairs (about 1e8): some 25 minutes per call extrapolated, not a baseline.
 SPATSTAT_TOO_SLOW = {("pcf_default", 100_000): "spatstat pcf not run (159 s/call at 1e4, 10x pairs at 1e5)"}
 

@@ -167,8 +167,8 @@ lest_timings <- function() {
     timing <- list()
     for (name in names(benchmark_calls)) {
       # pcf.ppp spends most of its time in deparse() (of the pair weights, through density's call):
-      # about a second at 1e3 points, 2.5 minutes at 1e4 (1e7 pairs; one call at a time, 3 repeats),
-      # ten times the pairs at 1e5 (not timed)
+      # 0.4 s at 1e3 points, 24 s at 1e4 on a quiet machine (1e7 pairs; one call at a time, 3 repeats;
+      # 2.5 minutes under load), ten times the pairs at 1e5 (not timed)
       if (name == "pcf_default" && n >= 1e5) next
       key <- sub("^Lest_", "", name)
       data <- if (name == "Lcross_isotropic") X else Y
