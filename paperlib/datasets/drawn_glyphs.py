@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in seven families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in eight families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -53,7 +53,10 @@ failed, which led to judging crossings at the pen's scale); and ``"held_out_5"``
 two double-stroke faces, fixed before that revision and checked once after it (it failed on Times
 italic 'a', which led to reading crossings in and out of another stroke's ink as a touch); and
 ``"held_out_6"``, triplex, bold and blackletter faces, fixed before that last revision and checked
-once after it.
+once after it (it failed on bold and triplex faces, which led to reading extremities and crossings
+on the ink's centrelines when the drawing is made of parallel pen lines); and ``"held_out_7"``,
+complex Greek and Cyrillic, Times Greek and three more blackletters, fixed before that revision and
+checked once after it.
 
 Written by hand: no library draws glyphs with a hand's variation.
 
@@ -442,9 +445,22 @@ HELD_OUT_6_CASES = {
     "held6_control_s": ("one type (control)", (("s", 0.05, 50),)),
     "held6_control_gothic_o": ("one type, a blackletter glyph (control)", (("o", 0.05, 50),)),
 }
+#: Seventh held-out family, fixed after the sixth had failed (bold and triplex faces) and before extremities
+#: and crossings were read on the ink of drawings made of parallel pen lines; checked once after: complex
+#: Greek (``greekc``), Cyrillic (``cyrillic``), Times Greek (``timesg``) and the blackletters ``gothitt``,
+#: ``gothicger`` and ``gothgbt``.
+HELD_OUT_7_CASES = {
+    "held7_area_2": ("area (sizes x2.2)", (("d", 0.035, 35), ("d", 0.077, 25, "D-big"))),
+    "held7_topology_3": ("extremities and crossings", (("o", 0.05, 30), ("x", 0.05, 30), ("c", 0.05, 30))),
+    "held7_elongation_2": ("elongation and topology", (("1", 0.07, 30), ("o", 0.07, 30))),
+    "held7_mixed_4": ("area, topology and elongation", (("a", 0.05, 25), ("k", 0.05, 25), ("w", 0.05, 20),
+                                                          ("o", 0.1, 15))),
+    "held7_control_m": ("one type, a blackletter glyph (control)", (("m", 0.05, 50),)),
+    "held7_control_h": ("one type, a blackletter glyph (control)", (("h", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
-             "held_out_6": HELD_OUT_6_CASES}
+             "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -454,7 +470,9 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held5_elongation_2": "rowmand", "held5_mixed_4": "timesi", "held5_control_m": "rowmand",
                    "held5_control_italic_k": "timesi", "held6_area_2": "rowmant", "held6_topology_3": "timesrb",
                    "held6_elongation_2": "rowmant", "held6_mixed_4": "timesib", "held6_control_s": "timesrb",
-                   "held6_control_gothic_o": "gothiceng"}
+                   "held6_control_gothic_o": "gothiceng", "held7_area_2": "greekc", "held7_topology_3": "cyrillic",
+                   "held7_elongation_2": "gothitt", "held7_mixed_4": "timesg", "held7_control_m": "gothicger",
+                   "held7_control_h": "gothgbt"}
 
 
 def categorization_cases(family: str = "main", rng=None) -> dict:
@@ -462,7 +480,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4", "held_out_5", "held_out_6"}
+    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4", "held_out_5", "held_out_6", "held_out_7"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -471,6 +489,8 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         ``"held_out_4"``: :data:`HELD_OUT_4_CASES`, a complex serif and a complex script face.
         ``"held_out_5"``: :data:`HELD_OUT_5_CASES`, Times italic and two double-stroke faces.
         ``"held_out_6"``: :data:`HELD_OUT_6_CASES`, triplex, bold and blackletter faces.
+        ``"held_out_7"``: :data:`HELD_OUT_7_CASES`, complex Greek and Cyrillic, Times Greek and
+        blackletters.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
         another is added after it.

@@ -1,0 +1,140 @@
+"""paperlib.arrangement.ink: extremities and crossings read on the ink of overdrawn strokes (issue 27)."""
+
+import numpy as np
+import pytest
+
+from paperlib.arrangement import (
+    MAX_INK_PIXELS,
+    element_features,
+    extremity_points,
+    crossing_points,
+    ink_centrelines,
+    overdrawn_fraction,
+)
+from paperlib.datasets.drawn_glyphs import drawn_glyph
+from paperlib.geometry import Element, Stroke
+
+PEN = 0.1
+
+
+def parallel_lines(points, lines=3, spacing=0.3 * PEN, pen=PEN):
+    """One thick stroke drawn as ``lines`` pen lines side by side, as bold faces draw it."""
+    points = np.asarray(points, dtype=float)
+    tangent = np.gradient(points, axis=0)
+    normal = np.column_stack([-tangent[:, 1], tangent[:, 0]]) / np.hypot(*tangent.T)[:, None]
+    offsets = (np.arange(lines) - (lines - 1) / 2.0) * spacing
+    return [Stroke(points + offset * normal, pen) for offset in offsets]
+
+
+def arc(start, stop, n=90, radius=1.0):
+    angle = np.linspace(start, stop, n)
+    return radius * np.column_stack([np.cos(angle), np.sin(angle)])
+
+
+def segment(a, b, n=40):
+    return np.linspace(a, b, n)
+
+
+def bold(*paths, **kw):
+    return Element(tuple(stroke for path in paths for stroke in parallel_lines(path, **kw)))
+
+
+def ink_counts(element, **parameters):
+    return (len(extremity_points(element, topology="ink", **parameters)),
+            len(crossing_points(element, topology="ink")))
+
+
+BOLD_C = bold(arc(np.pi / 4, 7 * np.pi / 4))
+BOLD_X = bold(segment((-1, -1), (1, 1)), segment((-1, 1), (1, -1)))
+BOLD_O = bold(arc(0, 2 * np.pi, 120))
+BOLD_T = bold(segment((-1, 1), (1, 1)), segment((0, 1), (0, -1)))
+
+
+@pytest.mark.parametrize(("element", "expected"), [(BOLD_C, (2, 0)), (BOLD_X, (4, 1)), (BOLD_O, (0, 0)),
+                                                   (BOLD_T, (3, 0))])
+def test_thick_strokes_drawn_as_parallel_lines_read_as_one_line(element, expected):
+    assert ink_counts(element) == expected
+
+
+@pytest.mark.parametrize("angle", [0.0, 0.3, np.pi / 4, 1.1])
+@pytest.mark.parametrize("scale", [0.05, 1.0, 30.0])
+def test_ink_reading_does_not_depend_on_pose_or_scale(angle, scale):
+    rotation = scale * np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    for element, expected in ((BOLD_X, (4, 1)), (BOLD_C, (2, 0))):
+        moved = Element(tuple(Stroke(s.points @ rotation.T + (3.0, -2.0), s.width * scale) for s in element.strokes))
+        assert ink_counts(moved) == expected
+
+
+def test_the_pen_lines_themselves_miscount_a_bold_x():
+    """Read pen line by pen line, the bold 'x' is not the ink's 4 ends and a crossing (why the ink is read)."""
+    strokes = (len(extremity_points(BOLD_X, topology="strokes")), len(crossing_points(BOLD_X, topology="strokes")))
+    assert strokes != (4, 1)
+
+
+def test_a_dot_of_ink_is_one_extremity():
+    dot = Stroke(np.array([[3.0, 0.0], [3.0, 0.0]]), PEN)
+    element = Element(BOLD_C.strokes + (dot,))
+    assert ink_counts(element) == (3, 0)
+    near_the_dot = [stroke.points for stroke in ink_centrelines(element).strokes
+                    if np.hypot(*(stroke.points - (3.0, 0.0)).T).max() < PEN]
+    assert len(near_the_dot) == 1  # a point, or a few pixels of skeleton: a blob, one extremity
+
+
+def test_centrelines_keep_name_pen_and_run_inside_the_ink():
+    element = Element(BOLD_C.strokes, name="c")
+    centrelines = ink_centrelines(element)
+    assert centrelines.name == "c"
+    assert len(centrelines.strokes) == 1
+    assert {stroke.width for stroke in centrelines.strokes} == {PEN}
+    radius = np.hypot(*centrelines.strokes[0].points.T)
+    assert np.all(np.abs(radius - 1.0) < PEN / 2)
+
+
+def test_hand_drawn_bold_glyphs_read_alike_copy_after_copy():
+    """Twenty copies of a Times-bold 'x' (stroke-wise 6 to 12 extremities): one reading on the ink."""
+    readings = {ink_counts(drawn_glyph("x", 1.0, font="timesrb", rng=seed))[1] for seed in range(20)}
+    assert readings == {1}
+    copies = [drawn_glyph("c", 1.0, font="timesrb", rng=seed) for seed in range(20)]
+    extremities = [ink_counts(copy)[0] for copy in copies]
+    assert np.mean(np.array(extremities) == 2) >= 0.9
+
+
+def test_overdrawn_fraction_separates_single_and_parallel_lines():
+    single = Element((Stroke(arc(0.0, np.pi), PEN),))
+    assert overdrawn_fraction(single) == 0.0
+    assert overdrawn_fraction(BOLD_C) == 1.0
+    assert 0.0 < overdrawn_fraction(Element((Stroke(segment((-1, 0), (1, 0)), PEN),
+                                             Stroke(segment((0, -1), (0, 1)), PEN)))) < 0.2
+
+
+def test_features_choose_one_reading_for_the_whole_arrangement():
+    thin = [Element((Stroke(segment((-1, -1), (1, 1)), PEN), Stroke(segment((-1, 1), (1, -1)), PEN)))] * 3
+    assert element_features(thin, 100.0).attrs["topology_read_on"] == "strokes"
+    table = element_features([BOLD_X, BOLD_C, BOLD_X], 100.0)
+    assert table.attrs["topology_read_on"] == "ink"
+    assert table.extremities_raw.tolist() == [4, 2, 4] and table.crossings_raw.tolist() == [1, 0, 1]
+    forced = element_features([BOLD_X, BOLD_C, BOLD_X], 100.0, topology="strokes")
+    assert forced.attrs["topology_read_on"] == "strokes"
+
+
+def test_a_hairline_pen_on_a_large_drawing_stays_within_the_raster_bound():
+    element = Element((Stroke(arc(0.0, 3 * np.pi / 2, 400, radius=1000.0), 1e-6),))
+    centrelines = ink_centrelines(element)
+    assert len(centrelines.strokes) == 1
+    assert ink_counts(element) == (2, 0)
+    assert MAX_INK_PIXELS <= 4096
+
+
+@pytest.mark.parametrize(("call", "error", "match"), [
+    (lambda: ink_centrelines(BOLD_C, pixels_per_pen=2), ValueError, "pixels_per_pen"),
+    (lambda: ink_centrelines(BOLD_C, pixels_per_pen=6.0), TypeError, "pixels_per_pen"),
+    (lambda: ink_centrelines(BOLD_C, spur_length=-1.0), ValueError, "spur_length"),
+    (lambda: ink_centrelines(BOLD_C, spur_length="1"), TypeError, "spur_length"),
+    (lambda: ink_centrelines([BOLD_C]), TypeError, "element"),
+    (lambda: overdrawn_fraction("c"), TypeError, "element"),
+    (lambda: element_features([BOLD_C], 1.0, topology="skeleton"), ValueError, "topology"),
+    (lambda: extremity_points(BOLD_C, topology=None), ValueError, "topology"),
+])
+def test_bad_arguments_name_the_parameter(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
