@@ -138,3 +138,39 @@ def test_a_hairline_pen_on_a_large_drawing_stays_within_the_raster_bound():
 def test_bad_arguments_name_the_parameter(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def _footprint_without_slits(polylines, pen):
+    """The pen's footprint (shapely), its holes narrower than the pen filled as the ink reading fills them."""
+    import shapely
+    from shapely.geometry import LineString, Point, Polygon
+    from shapely.ops import unary_union
+
+    ink = unary_union([LineString(points).buffer(pen / 2) if len(set(points)) > 1 else Point(points[0]).buffer(pen / 2)
+                       for points in polylines])
+    slits = [Polygon(ring) for part in getattr(ink, "geoms", [ink]) for ring in part.interiors
+             if shapely.maximum_inscribed_circle(Polygon(ring)).length <= pen / 2 + pen / 6]
+    return unary_union([ink, *slits])
+
+
+def test_centrelines_of_random_scribbles_stay_in_the_ink_and_repeat_bit_for_bit():
+    """Property: for any scribble, every centreline point lies in the ink, and a rerun is identical."""
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+    from shapely.geometry import Point
+
+    coordinate = st.floats(-1.0, 1.0, allow_nan=False)
+    polyline = st.lists(st.tuples(coordinate, coordinate), min_size=2, max_size=8)
+
+    @settings(max_examples=40, database=None, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+    @given(st.lists(polyline, min_size=1, max_size=4), st.floats(0.02, 0.3))
+    def check(polylines, pen):
+        element = Element(tuple(Stroke(np.array(points), pen) for points in polylines))
+        first, second = ink_centrelines(element), ink_centrelines(element)
+        assert [s.points.tobytes() for s in first.strokes] == [s.points.tobytes() for s in second.strokes]
+        # slack: the Gaussian smoothing (a third of a pen) cuts the corner of a hairpin by up to half a pen
+        ink = _footprint_without_slits(polylines, pen).buffer(0.6 * pen)
+        for stroke in first.strokes:
+            assert all(ink.covers(Point(p)) for p in stroke.points)
+
+    check()

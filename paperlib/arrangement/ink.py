@@ -232,19 +232,26 @@ def _ink_raster(element: Element, pen: float, pixels_per_pen: int):
     low = element.points.min(axis=0) - pen
     extent = element.points.max(axis=0) + pen - low
     pixel = max(pen / pixels_per_pen, float(extent.max()) / MAX_INK_PIXELS)
-    columns, rows = (np.ceil(extent / pixel).astype(int) + 1).tolist()
-    centres = low + (np.stack(np.meshgrid(np.arange(columns), np.arange(rows)), axis=-1).reshape(-1, 2) + 0.5) * pixel
-    ink = np.zeros(rows * columns, dtype=bool)
+    shape = tuple((np.ceil(extent / pixel).astype(int) + 1).tolist()[::-1])
     if _path_length(element) / (pixel / 3.0) > MAX_PATH_SAMPLES:
         raise ValueError(f"element's strokes are too long to rasterise ({_path_length(element):.4g}, more than "
                          f"{MAX_PATH_SAMPLES} samples a third of a pixel apart; pixel {pixel:.4g})")
+    ink = np.zeros(shape, dtype=bool)
     for width in sorted({stroke.width for stroke in element.strokes}):
         same_pen = Element(tuple(stroke for stroke in element.strokes if stroke.width == width))
         points = _path_samples(same_pen, pixel / 3.0)[0]
         # A pen thinner than the capped pixel still leaves a connected line of pixels.
         radius = max(width / 2.0, 0.75 * pixel)
-        ink |= cKDTree(points).query(centres, distance_upper_bound=radius)[0] <= radius
-    return low, pixel, ink.reshape(rows, columns)
+        # Only pixels within the radius of a sample's pixel can be inked: measure distances there alone.
+        near = np.zeros(shape, dtype=bool)
+        column, row = np.floor((points - low) / pixel).astype(int).T
+        near[row, column] = True
+        near = ndimage.binary_dilation(near, np.ones((3, 3), dtype=bool), iterations=int(np.ceil(radius / pixel)) + 1)
+        rows, columns = np.nonzero(near)
+        centres = low + (np.column_stack([columns, rows]) + 0.5) * pixel
+        inked = cKDTree(points).query(centres, distance_upper_bound=radius)[0] <= radius
+        ink[rows[inked], columns[inked]] = True
+    return low, pixel, ink
 
 
 def _fill_narrow_holes(ink: np.ndarray, pen_pixels: float) -> np.ndarray:
