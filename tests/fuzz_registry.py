@@ -287,7 +287,7 @@ REGISTRY = {
     "paperlib.arrangement.element_features": "elements=elements reference_area=float ; include_width=bool curvature_scale=float corner_angle=float join_tolerance=float topology=str",
     "paperlib.arrangement.element_positions": "elements=elements",
     "paperlib.arrangement.extremity_points": "element=elements ; curvature_scale=float corner_angle=float join_tolerance=float topology=str",
-    "paperlib.arrangement.ink_centrelines": "element=elements ; pixels_per_pen=count spur_length=float",
+    "paperlib.arrangement.ink_centrelines": "element=elements ; pixels_per_pen=count spur_length=float crossings=points",
     "paperlib.arrangement.overdrawn_fraction": "element=elements",
     "paperlib.arrangement.minimum_box_areas": "elements=elements ; include_width=bool",
     "paperlib.arrangement.fit": "elements=elements labels=counts window=window ; interaction=str",

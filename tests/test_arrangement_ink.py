@@ -65,6 +65,23 @@ def test_ink_reading_does_not_depend_on_pose_or_scale(angle, scale):
         assert ink_counts(moved) == expected
 
 
+@pytest.mark.parametrize("degrees", [20, 30, 45])
+def test_a_shallow_crossing_is_found_where_the_pen_lines_cross(degrees):
+    """Two bold strokes crossing at a small angle share their ink: the skeleton makes two forks of it.
+
+    Read alone, the centrelines see no crossing; told where the pen's lines cross (as
+    element_features tells them), the two forks are one crossing.
+    """
+    half = np.radians(degrees / 2)
+    c, s = np.cos(half), np.sin(half)
+    element = bold(segment((-c, -s), (c, s)), segment((-c, s), (c, -s)))
+    assert ink_counts(element) == (4, 1)
+    alone = ink_centrelines(element)
+    assert len(crossing_points(alone, topology="strokes")) == 0
+    told = ink_centrelines(element, crossings=crossing_points(element, topology="strokes"))
+    assert len(crossing_points(told, topology="strokes")) == 1
+
+
 def test_the_pen_lines_themselves_miscount_a_bold_x():
     """Read pen line by pen line, the bold 'x' is not the ink's 4 ends and a crossing (why the ink is read)."""
     strokes = (len(extremity_points(BOLD_X, topology="strokes")), len(crossing_points(BOLD_X, topology="strokes")))
@@ -131,6 +148,8 @@ def test_a_hairline_pen_on_a_large_drawing_stays_within_the_raster_bound():
     (lambda: ink_centrelines(BOLD_C, spur_length=-1.0), ValueError, "spur_length"),
     (lambda: ink_centrelines(BOLD_C, spur_length="1"), TypeError, "spur_length"),
     (lambda: ink_centrelines([BOLD_C]), TypeError, "element"),
+    (lambda: ink_centrelines(BOLD_C, crossings=[[np.nan, 0.0]]), ValueError, "crossings"),
+    (lambda: ink_centrelines(BOLD_C, crossings=[0.0, 1.0, 2.0]), ValueError, "crossings"),
     (lambda: overdrawn_fraction("c"), TypeError, "element"),
     (lambda: element_features([BOLD_C], 1.0, topology="skeleton"), ValueError, "topology"),
     (lambda: extremity_points(BOLD_C, topology=None), ValueError, "topology"),

@@ -105,7 +105,8 @@ line the eye sees as several pen lines side by side, whose ends and mutual cross
 counts one by one (a Times-bold 'c' reads 1-5 extremities, a bold 'x' 6-12). With
 ``topology="ink"`` the same counts are taken on the centrelines of the ink instead
 (:func:`paperlib.arrangement.ink_centrelines`: skeleton of the pen's footprint, spurs removed,
-crossings re-joined by good continuation); ``"auto"`` (the default) does so when the arrangement's
+crossings re-joined by good continuation, two forks of a shallow crossing joined where the pen's
+lines, read as above, cross between them); ``"auto"`` (the default) does so when the arrangement's
 median element is overdrawn (:func:`paperlib.arrangement.overdrawn_fraction` above 0.35), so
 drawings made of single pen lines keep the reading above, unchanged. Reading every drawing on its
 ink was measured and not kept: where a pen is thick for its glyph the ink closes small counters and
@@ -536,7 +537,10 @@ def _measured_topology(measure, stack, elements, read_on, curvature_scale, corne
     with warnings.catch_warnings():
         # A dot of ink is a single-point centreline, one extremity: nothing to warn the user of.
         warnings.filterwarnings("ignore", message=r".*stroke\(s\) of zero length", category=UserWarning)
-        stack = stack_strokes([ink_centrelines(element) for element in elements])
+        # Where the pen's lines cross tells the ink which pairs of forks are one shallow crossing.
+        points, owner = _crossings(_build_curves(stack, curvature_scale, corner_angle, join_tolerance))
+        stack = stack_strokes([ink_centrelines(element, crossings=points[owner == k])
+                               for k, element in enumerate(elements)])
         return measure(_build_curves(stack, curvature_scale, corner_angle, join_tolerance))
 
 

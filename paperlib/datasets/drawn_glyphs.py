@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in eight families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in nine families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -56,7 +56,10 @@ italic 'a', which led to reading crossings in and out of another stroke's ink as
 once after it (it failed on bold and triplex faces, which led to reading extremities and crossings
 on the ink's centrelines when the drawing is made of parallel pen lines); and ``"held_out_7"``,
 complex Greek and Cyrillic, Times Greek and three more blackletters, fixed before that revision and
-checked once after it.
+checked once after it (it failed on the shallow crossing of a Greek alpha, which led to reading two
+forks of the ink as one crossing where the pen's lines cross); and ``"held_out_8"``, simplex and
+duplex Greek, a second Cyrillic and two more blackletters, fixed before that revision and checked
+once after it.
 
 Written by hand: no library draws glyphs with a hand's variation.
 
@@ -458,9 +461,22 @@ HELD_OUT_7_CASES = {
     "held7_control_m": ("one type, a blackletter glyph (control)", (("m", 0.05, 50),)),
     "held7_control_h": ("one type, a blackletter glyph (control)", (("h", 0.05, 50),)),
 }
+#: Eighth held-out family, fixed after the seventh had failed (a Greek alpha's shallow crossing lost on the
+#: ink) and before the pen's crossings were used to join two forks of the ink; checked once after: simplex
+#: and duplex Greek (``greeks``, ``greek``), Cyrillic complex (``cyrilc_1``) and the blackletters
+#: ``gothicita`` and ``gothgrt``.
+HELD_OUT_8_CASES = {
+    "held8_area_2": ("area (sizes x2.1)", (("b", 0.035, 35), ("b", 0.075, 25, "B-big"))),
+    "held8_topology_3": ("extremities and crossings", (("o", 0.05, 30), ("x", 0.05, 30), ("c", 0.05, 30))),
+    "held8_elongation_2": ("elongation and topology", (("l", 0.07, 30), ("o", 0.07, 30))),
+    "held8_mixed_4": ("area, topology and elongation", (("p", 0.05, 25), ("l", 0.05, 25), ("f", 0.06, 20),
+                                                          ("o", 0.1, 15))),
+    "held8_control_e": ("one type, a blackletter glyph (control)", (("e", 0.05, 50),)),
+    "held8_control_m": ("one type (control)", (("m", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
-             "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES}
+             "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -472,7 +488,9 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held6_elongation_2": "rowmant", "held6_mixed_4": "timesib", "held6_control_s": "timesrb",
                    "held6_control_gothic_o": "gothiceng", "held7_area_2": "greekc", "held7_topology_3": "cyrillic",
                    "held7_elongation_2": "gothitt", "held7_mixed_4": "timesg", "held7_control_m": "gothicger",
-                   "held7_control_h": "gothgbt"}
+                   "held7_control_h": "gothgbt", "held8_area_2": "greeks", "held8_topology_3": "gothicita",
+                   "held8_elongation_2": "gothgrt", "held8_mixed_4": "greek", "held8_control_e": "gothicita",
+                   "held8_control_m": "cyrilc_1"}
 
 
 def categorization_cases(family: str = "main", rng=None) -> dict:
@@ -480,7 +498,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", "held_out_3", "held_out_4", "held_out_5", "held_out_6", "held_out_7"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_8"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -491,6 +509,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         ``"held_out_6"``: :data:`HELD_OUT_6_CASES`, triplex, bold and blackletter faces.
         ``"held_out_7"``: :data:`HELD_OUT_7_CASES`, complex Greek and Cyrillic, Times Greek and
         blackletters.
+        ``"held_out_8"``: :data:`HELD_OUT_8_CASES`, simplex and duplex Greek, Cyrillic, blackletters.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
         another is added after it.
