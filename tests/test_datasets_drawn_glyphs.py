@@ -5,7 +5,7 @@ import pytest
 
 from paperlib.arrangement import element_features
 from paperlib.datasets import GlyphType, categorization_cases, drawn_glyph, drawn_glyph_exemplar
-from paperlib.datasets.drawn_glyphs import HELD_OUT_2_CASES, HELD_OUT_CASES, MAIN_CASES
+from paperlib.datasets.drawn_glyphs import HELD_OUT_2_CASES, HELD_OUT_9_CASES, HELD_OUT_CASES, MAIN_CASES
 from paperlib.pointprocess import Window
 
 TYPES = (("o", 0.05, 20), ("x", 0.05, 15), ("#", 0.08, 10, "hash"))
@@ -79,6 +79,10 @@ def test_categorization_cases_families():
     assert all(2 <= len(ex.categories) <= 5 for name, (_, ex) in main.items() if "control" not in name)
     assert list(categorization_cases("held_out", rng=0)) == list(HELD_OUT_CASES)
     assert list(categorization_cases("held_out_2", rng=0)) == list(HELD_OUT_2_CASES)
+    ninth = categorization_cases("held_out_9", rng=0)  # the faces no other family uses: symbols, kana
+    assert list(ninth) == list(HELD_OUT_9_CASES)
+    assert [len(exemplar.categories) for _, exemplar in ninth.values()] == [len(types) for _, types in
+                                                                             HELD_OUT_9_CASES.values()]
     again = categorization_cases("main", rng=0)
     assert np.array_equal(again["mixed_5"][1].elements[3].points, main["mixed_5"][1].elements[3].points)
 
