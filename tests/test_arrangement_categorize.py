@@ -437,3 +437,44 @@ def test_a_witness_must_differ_by_its_resolution():
     assert split.histogram.groups.tolist() == [0] * 100 + [1] * 100
     # epsilon scales the threshold: at a vanishing epsilon nothing is meaningful enough
     assert _joint_split("all", np.arange(200), values, joint_parameters(epsilon=1e-300)) is None
+
+
+# --------------------------------------------------------------------------- features measured once
+
+
+def test_given_features_give_the_same_categories_without_measuring_again(monkeypatch):
+    import importlib
+
+    module = importlib.import_module("paperlib.arrangement.categorize")
+    exemplar = drawn((("o", 0.05, 20), ("x", 0.05, 20)), 0)
+    measured = {method: categorize(exemplar.elements, exemplar.window.area, method=method, rng=0)
+                for method in ("recursive", "paper")}
+    monkeypatch.setattr(module, "element_features", lambda *args, **kwargs: pytest.fail("measured again"))
+    for method, expected in measured.items():
+        again = categorize(exemplar.elements, exemplar.window.area, method=method, rng=0,
+                           features=measured["recursive"].features)
+        assert again.labels.tolist() == expected.labels.tolist() and again.categories == expected.categories
+        assert again.parameters == expected.parameters
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda f: f.iloc[:-1], "one row per element"),
+        (lambda f: f.drop(columns="crossings_raw"), "lacks the columns"),
+        (lambda f: f.assign(area=f["area"]).pipe(lambda g: setattr(g, "attrs", {}) or g), "attrs"),
+    ],
+)
+def test_given_features_must_describe_the_elements(change, message):
+    exemplar = drawn((("o", 0.05, 12),), 0)
+    features = categorize(exemplar.elements, exemplar.window.area).features
+    with pytest.raises(ValueError, match=message):
+        categorize(exemplar.elements, exemplar.window.area, features=change(features.copy()))
+    with pytest.raises(ValueError, match="reference_area"):
+        categorize(exemplar.elements, 2 * exemplar.window.area, features=features)
+    with pytest.raises(ValueError, match="differs from the reading"):
+        categorize(exemplar.elements, exemplar.window.area, features=features, topology="ink")
+    with pytest.raises(ValueError, match="topology must be one of"):
+        categorize(exemplar.elements, exemplar.window.area, features=features, topology="pen")
+    with pytest.raises(TypeError, match="features"):
+        categorize(exemplar.elements, exemplar.window.area, features=features.to_numpy())

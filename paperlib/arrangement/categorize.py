@@ -208,10 +208,10 @@ from paperlib.acontrario import (
     interval_log10_nfa,
     outlier_intervals,
 )
-from paperlib._checks import as_generator, data_frame, finite_array, instance_of
+from paperlib._checks import as_generator, data_frame, finite_array, instance_of, positive_number
 from paperlib.geometry import as_elements
 
-from .features import COUNT_SCALE, element_features
+from .features import COUNT_SCALE, TOPOLOGY_READINGS, element_features
 from .robpca import ExactFitError, RobustPCA, robust_pca
 
 __all__ = [
@@ -517,6 +517,7 @@ def categorize(
     histogram_range: str = "domain",
     orientation: str = "unwrap",
     topology: str = "auto",
+    features=None,
     rng=None,
 ) -> Categorization:
     """Categorize elements by appearance: recursive a contrario splitting, or the paper's recipe.
@@ -555,6 +556,12 @@ def categorize(
         Where extremities and crossings are read, as for
         :func:`~paperlib.arrangement.element_features`: by default on the ink's centrelines when
         the elements are drawn with overlapping pen lines (bold, sketchy), else on the strokes.
+    features : pandas.DataFrame, optional
+        The elements' features, as :func:`~paperlib.arrangement.element_features` returns them
+        for these elements and ``reference_area`` (e.g. a previous result's
+        :attr:`Categorization.features`): the same elements are then categorized under other
+        settings without being measured again, which is most of the cost. By default they are
+        measured. ``topology`` must then be ``"auto"`` or the reading they record.
     rng : None, int or numpy.random.Generator
         Seed of ROBPCA's random directions (``method="paper"``; the recursive method draws none).
 
@@ -568,8 +575,9 @@ def categorize(
     TypeError
         If ``elements`` is not a sequence of Element, or a parameter has the wrong type.
     ValueError
-        If there are no elements, ``reference_area`` is not positive, or a parameter is out of
-        range.
+        If there are no elements, ``reference_area`` is not positive, a parameter is out of
+        range, or ``features`` does not describe these elements (row count, reference area,
+        topology reading).
 
     References
     ----------
@@ -589,7 +597,10 @@ def categorize(
         raise ValueError(f"histogram_range must be one of {_HISTOGRAM_RANGES}, got {histogram_range!r}")
     if orientation not in _ORIENTATIONS:
         raise ValueError(f"orientation must be one of {_ORIENTATIONS}, got {orientation!r}")
-    features = element_features(elements, reference_area, topology=topology)
+    if features is None:
+        features = element_features(elements, reference_area, topology=topology)
+    else:
+        _check_given_features(features, len(elements), reference_area, topology)
     parameters = {
         "method": method,
         "bins": n_bins,
@@ -602,6 +613,24 @@ def categorize(
     if method == "recursive":
         return _categorize_recursively(features, parameters)
     return _categorize_as_the_paper(features, parameters, as_generator(rng))
+
+
+def _check_given_features(features, n_elements: int, reference_area, topology: str) -> None:
+    """Raise unless ``features`` is element_features' table for ``n_elements`` elements and ``reference_area``."""
+    data_frame(features, "features", ("area", "orientation", "elongation", "extremities", "crossings",
+                                      "crossings_raw", "extremities_raw"))
+    if len(features) != n_elements:
+        raise ValueError(f"features must hold one row per element ({n_elements}), got {len(features)} rows")
+    given_area, read_on = features.attrs.get("reference_area"), features.attrs.get("topology_read_on")
+    if given_area is None or read_on is None:
+        raise ValueError("features must come from element_features (its attrs record reference_area and "
+                         f"topology_read_on), got attrs {sorted(features.attrs)}")
+    if not np.isclose(given_area, positive_number(reference_area, "reference_area"), rtol=1e-12, atol=0.0):
+        raise ValueError(f"features were measured for reference_area={given_area!r}, not {reference_area!r}")
+    if topology not in TOPOLOGY_READINGS:
+        raise ValueError(f"topology must be one of {TOPOLOGY_READINGS}, got {topology!r}")
+    if topology not in ("auto", read_on):
+        raise ValueError(f"topology={topology!r} differs from the reading the features record ({read_on!r})")
 
 
 def _categorize_as_the_paper(features: pd.DataFrame, parameters: dict, generator) -> Categorization:
