@@ -51,6 +51,7 @@ __all__ = [
     "HistogramModes",
     "Interval",
     "MAX_BINS",
+    "MAX_SEGMENTED_BINS",
     "gap_log10_nfa",
     "histogram_modes",
     "interval_labels",
@@ -61,6 +62,7 @@ __all__ = [
     "meaningful_intervals",
     "meaningful_modes",
     "outlier_intervals",
+    "unimodal_segments",
 ]
 
 # Below this, betainc's result nears the subnormal range and loses relative precision,
@@ -527,6 +529,111 @@ def outlier_intervals(counts, modes: Sequence[Interval | tuple[int, int]]) -> li
     covered = _bin_labels(_as_bin_ranges(modes, counts.size, "modes"), counts.size) >= 0
     runs = _runs_of_true(~covered)
     return [(start, end) for start, end in runs if counts[start : end + 1].sum() > 0]
+
+
+# --------------------------------------------------------------------------- unimodal segmentation (FTC)
+
+#: Most bins :func:`unimodal_segments` takes: a unimodality test costs ``L^3`` binomial tails and the
+#: merging up to ``L^2`` tests (64 bins: 1.5 s for random counts, 10 s for the worst, alternating ones).
+MAX_SEGMENTED_BINS = 64
+
+
+def unimodal_segments(counts, epsilon: float = 1.0) -> list[tuple[int, int]]:
+    """The coarsest segmentation of a histogram into unimodal runs of bins (Delon et al.'s FTC).
+
+    The histogram is first cut at every local minimum (the middle bin of a lowest plateau), then
+    consecutive segments are merged, two at a time and then more, while their union follows the
+    *unimodal hypothesis*: for some bin ``c``, the histogram is explained by the Grenander
+    estimator increasing up to ``c`` and decreasing after it (the isotonic fits by pool adjacent
+    violators), i.e. no run of bins ``[i, j]`` of the union holds meaningfully more or fewer
+    samples than the estimator gives it: ``NFA = L (L + 1) / 2 * B < epsilon`` for neither tail,
+    with ``B`` the binomial tail of the union's ``M`` samples (counts above ``M r`` at the
+    estimator's mass ``p``, or below). Unlike maximal meaningful modes, which test density
+    against a uniform background, this separates two populations whose bins all stand above the
+    background but with a dip between them that one population alone would not make.
+
+    Parameters
+    ----------
+    counts : array_like of int, shape (L,)
+        Histogram counts (``2 <= L <=`` :data:`MAX_SEGMENTED_BINS`, not all zero).
+    epsilon : float, optional
+        Meaningfulness threshold of a rejection (default 1).
+
+    Returns
+    -------
+    list of (int, int)
+        ``(start, end)`` inclusive bin ranges, in order, covering ``0 .. L - 1``; a separating
+        bin goes to the segment on its left.
+
+    Raises
+    ------
+    ValueError
+        If ``counts`` is not a non-empty histogram of at most :data:`MAX_SEGMENTED_BINS` bins, or
+        ``epsilon`` is not positive.
+
+    References
+    ----------
+    .. [1] Delon, Desolneux, Lisani and Petro (2007), "A nonparametric approach for histogram
+       segmentation", IEEE TIP 16(1), sections III (Grenander estimator, meaningful rejections)
+       and IV (the fine-to-coarse algorithm).
+    """
+    counts, _ = _validated_histogram(counts, None, MAX_SEGMENTED_BINS)
+    epsilon = positive_number(epsilon, "epsilon")
+    log10_epsilon_per_test = np.log10(epsilon) - np.log10(counts.size * (counts.size + 1) / 2)
+    cuts = [0, *_local_minima(counts), counts.size - 1]
+    merged = True
+    while merged:  # pairs first, then longer unions; back to pairs after every merge
+        merged = False
+        for span in range(2, len(cuts)):
+            for first in range(len(cuts) - span):
+                if _is_unimodal(counts[cuts[first] : cuts[first + span] + 1], log10_epsilon_per_test):
+                    del cuts[first + 1 : first + span]
+                    merged = True
+                    break
+            if merged:
+                break
+    return [(cuts[k] + (k > 0), cuts[k + 1]) for k in range(len(cuts) - 1)]
+
+
+def _local_minima(counts: np.ndarray) -> list[int]:
+    """Bins strictly below both neighbouring plateaus (the middle of a lowest plateau), in order."""
+    change = np.flatnonzero(np.diff(counts)) + 1
+    starts, ends = np.concatenate([[0], change]), np.concatenate([change - 1, [counts.size - 1]])
+    levels = counts[starts]
+    return [int((starts[k] + ends[k]) // 2) for k in range(1, len(starts) - 1)
+            if levels[k - 1] > levels[k] < levels[k + 1]]
+
+
+def _is_unimodal(counts: np.ndarray, log10_threshold: float) -> bool:
+    """Whether some increasing-then-decreasing Grenander fit explains ``counts`` (no meaningful rejection)."""
+    total = int(counts.sum())
+    if counts.size <= 2 or total == 0:
+        return True
+    upper = np.triu(np.ones((counts.size, counts.size), dtype=bool))
+    cumulative = np.concatenate([[0], np.cumsum(counts)])
+    observed = (cumulative[None, 1:] - cumulative[:-1, None])[upper]
+    for peak in range(counts.size):
+        fit = np.concatenate([_increasing_fit(counts[: peak + 1]), _increasing_fit(counts[peak + 1 :][::-1])[::-1]])
+        mass = np.concatenate([[0.0], np.cumsum(fit)]) / total
+        expected = np.clip((mass[None, 1:] - mass[:-1, None])[upper], 0.0, 1.0)
+        excess = log_binomial_tail(total, observed, expected)
+        deficit = log_binomial_tail(total, total - observed, 1.0 - expected)
+        if np.minimum(excess, deficit).min() / np.log(10.0) >= log10_threshold:
+            return True
+    return False
+
+
+def _increasing_fit(values: np.ndarray) -> np.ndarray:
+    """Least-squares non-decreasing fit (pool adjacent violators): the Grenander estimator's shape."""
+    sums, sizes = [], []
+    for value in values.astype(float):
+        sums.append(value)
+        sizes.append(1)
+        while len(sums) > 1 and sums[-2] / sizes[-2] > sums[-1] / sizes[-1]:
+            last_sum, last_size = sums.pop(), sizes.pop()
+            sums[-1] += last_sum
+            sizes[-1] += last_size
+    return np.repeat(np.array(sums) / np.array(sizes), sizes) if sums else np.zeros(0)
 
 
 def histogram_modes(counts, epsilon: float = 1.0, prior=None, *, max_bins: int = MAX_BINS) -> HistogramModes:

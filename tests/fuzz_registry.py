@@ -270,6 +270,7 @@ REGISTRY = {
     "paperlib.acontrario.meaningful_intervals": "counts=counts ; epsilon=float prior=counts max_bins=count",
     "paperlib.acontrario.meaningful_modes": "counts=counts ; epsilon=float prior=counts max_bins=count",
     "paperlib.acontrario.outlier_intervals": "counts=counts modes=any",
+    "paperlib.acontrario.unimodal_segments": "counts=counts ; epsilon=float",
     "paperlib.arrangement.Arrangement": "pattern=pattern elements=elements labels=counts window=window categories=any",
     "paperlib.arrangement.ArrangementModel": "model=any fit=any references=any categories=any window=window pattern=pattern ; interaction=str",
     "paperlib.arrangement.AreaCategory": "name=str kind=str members=any status=any",

@@ -19,6 +19,7 @@ from paperlib.acontrario import (
     meaningful_intervals,
     meaningful_modes,
     outlier_intervals,
+    unimodal_segments,
 )
 from paperlib.acontrario import _maximal  # the maximality rule on hand-made tables
 
@@ -394,3 +395,55 @@ def test_a_few_hundred_bins_find_the_two_modes():
     counts, _ = np.histogram(values, bins=300, range=(0, 1))
     modes = maximal_meaningful_modes(counts)  # speed: benchmarks/, never a wall time in a test
     assert len(modes) == 2
+
+
+# --------------------------------------------------------------------------- unimodal segmentation (FTC)
+
+
+def test_two_populations_above_the_background_are_cut_at_their_dip():
+    # Extremity counts of three drawn outlines: 5 and 6 (two florettes), a dip, then 8-10 (a shamrock).
+    # Every filled bin is denser than the uniform background, so the MM-modes make one mode of 5-10.
+    counts = [0, 0, 0, 0, 0, 25, 24, 2, 17, 6, 1, 1]
+    assert len(maximal_meaningful_modes(counts)) == 1
+    assert unimodal_segments(counts) == [(0, 7), (8, 11)]
+
+
+@pytest.mark.parametrize("counts", [
+    [0, 0, 0, 15, 5, 0, 0, 0, 0, 0, 0],  # a hand moves a fifth of the copies one count up
+    [0, 0, 0, 0, 0, 3, 15, 26, 6, 0, 0],  # a spread over four counts
+    [0, 0, 0, 20, 28, 0, 0, 1, 0, 0, 0],  # one far copy: too little to reject a decreasing tail
+    [0, 0, 5, 0, 5, 0, 0, 0, 0, 0, 0],  # a dip, but too few samples to mean anything
+    SINGLE_BUMP,
+])
+def test_unimodal_histograms_stay_one_segment(counts):
+    assert unimodal_segments(counts) == [(0, len(counts) - 1)]
+
+
+def test_segments_cover_the_histogram_and_find_separated_bumps():
+    assert unimodal_segments(TWO_BUMPS) == [(0, 8), (9, 19)]  # cut in the middle of the empty run
+    rng = np.random.default_rng(0)
+    for _ in range(20):
+        counts = rng.integers(0, 20, rng.integers(2, 30))
+        if counts.sum() == 0:
+            continue
+        segments = unimodal_segments(counts)
+        assert segments[0][0] == 0 and segments[-1][1] == len(counts) - 1
+        assert all(a[1] + 1 == b[0] for a, b in zip(segments[:-1], segments[1:]))
+        assert unimodal_segments(counts[::-1]) is not None  # runs both ways without error
+
+
+def test_a_smaller_epsilon_merges_more():
+    counts = [0, 20, 5, 20, 0]
+    assert len(unimodal_segments(counts, epsilon=1.0)) == 2
+    assert len(unimodal_segments(counts, epsilon=1e-3)) == 1
+
+
+@pytest.mark.parametrize("counts, epsilon, error", [
+    ([0, 0, 0], 1.0, ValueError),
+    ([1] * 65, 1.0, ValueError),
+    ([1, -1, 2], 1.0, ValueError),
+    ([1, 2, 3], 0.0, ValueError),
+])
+def test_unimodal_segments_rejects_bad_input(counts, epsilon, error):
+    with pytest.raises(error):
+        unimodal_segments(counts, epsilon)

@@ -478,3 +478,18 @@ def test_given_features_must_describe_the_elements(change, message):
         categorize(exemplar.elements, exemplar.window.area, features=features, topology="pen")
     with pytest.raises(TypeError, match="features"):
         categorize(exemplar.elements, exemplar.window.area, features=features.to_numpy())
+
+
+def test_extremity_counts_of_two_populations_divide_at_their_dip():
+    from paperlib.arrangement.categorize import _node_histogram
+
+    # Extremity counts of florettes (5, 6) and shamrocks (8-10) drawn by a hand: every filled count is
+    # denser than the uniform background, one MM-mode; the dip at 7 is not one population's (FTC).
+    values = np.repeat([5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0], [25, 24, 2, 17, 6, 1, 1])
+    histogram = _node_histogram("extremities", values, joint_parameters())
+    assert len(histogram.analysis.modes) == 1
+    assert histogram.group_names == ("mode0", "mode1")
+    assert histogram.groups.tolist() == [0] * 51 + [1] * 25
+    # a hand that moves a quarter of one type's copies one count up leaves it whole
+    values = np.repeat([4.0, 5.0], [45, 15])
+    assert np.unique(_node_histogram("extremities", values, joint_parameters()).groups).size == 1
