@@ -459,6 +459,7 @@ REGISTRY = {
     "paperlib.datasets.drawn_glyph_exemplar": "types=counts ; window=window jitter=float tremor=float font=str rng=rng",
     "paperlib.datasets.drawn_hatching_exemplar": "; window=window n=count char=str length=float angle=float font=str rng=rng",
     "paperlib.datasets.glyph_outline": "name=str ; n_points=count",
+    "paperlib.datasets.character_outline": "char=str",
     "paperlib.datasets.glyph_outlines": "; n_points=count",
     "paperlib.datasets.grayscale_image": "name=str",
     "paperlib.datasets.grayscale_names": "",

@@ -5,7 +5,13 @@ import pytest
 
 from paperlib.arrangement import element_features
 from paperlib.datasets import GlyphType, categorization_cases, drawn_glyph, drawn_glyph_exemplar
-from paperlib.datasets.drawn_glyphs import HELD_OUT_2_CASES, HELD_OUT_9_CASES, HELD_OUT_CASES, MAIN_CASES
+from paperlib.datasets.drawn_glyphs import (
+    HELD_OUT_2_CASES,
+    HELD_OUT_9_CASES,
+    HELD_OUT_CASES,
+    MAIN_CASES,
+    OUTLINE_CASES,
+)
 from paperlib.pointprocess import Window
 
 TYPES = (("o", 0.05, 20), ("x", 0.05, 15), ("#", 0.08, 10, "hash"))
@@ -83,6 +89,9 @@ def test_categorization_cases_families():
     assert list(ninth) == list(HELD_OUT_9_CASES)
     assert [len(exemplar.categories) for _, exemplar in ninth.values()] == [len(types) for _, types in
                                                                              HELD_OUT_9_CASES.values()]
+    outlines = categorization_cases("outlines", rng=0)  # another tool's font: DejaVu outlines
+    assert list(outlines) == list(OUTLINE_CASES)
+    assert all(len(element.strokes) == 1 for _, exemplar in outlines.values() for element in exemplar.elements)
     again = categorization_cases("main", rng=0)
     assert np.array_equal(again["mixed_5"][1].elements[3].points, main["mixed_5"][1].elements[3].points)
 
@@ -109,3 +118,15 @@ def test_categorization_cases_families():
 def test_bad_input(call, error):
     with pytest.raises(error):
         call()
+
+
+def test_an_outline_drawn_by_the_hand_is_one_closed_pen_line():
+    still = drawn_glyph("♣", 1.0, jitter=0.0, tremor=0.0, font="dejavu_outlines", rng=0)
+    (stroke,) = still.strokes
+    np.testing.assert_array_equal(stroke.points[0], stroke.points[-1])
+    assert np.ptp(stroke.points, axis=0).max() == pytest.approx(1.0)
+    assert stroke.width == pytest.approx(1.0 / 21.0)
+    moved = drawn_glyph("♣", 1.0, font="dejavu_outlines", rng=0)
+    assert np.abs(moved.strokes[0].points - stroke.points).max() > 0.01
+    with pytest.raises(ValueError, match="char"):
+        drawn_glyph(" ", 1.0, font="dejavu_outlines")

@@ -7,6 +7,7 @@ from shapely.geometry import LinearRing, Point, Polygon
 
 from paperlib.datasets.outlines import (
     OUTLINE_CODEPOINTS,
+    character_outline,
     font_path,
     glyph_outline,
     glyph_outlines,
@@ -124,3 +125,24 @@ def test_bad_n_points(bad):
 def test_zero_length_curve_cannot_be_resampled():
     with pytest.raises(ValueError, match="zero length"):
         resample_closed_curve([(1, 1), (1, 1), (1, 1)], 5)
+
+
+@pytest.mark.parametrize("char", ["♔", "★", "✈", "A"])
+def test_any_character_has_its_outer_outline(char):
+    ring = character_outline(char)
+    assert ring.ndim == 2 and ring.shape[1] == 2 and len(ring) >= 4 and not ring.flags.writeable
+    assert shoelace(ring) > 0  # counter-clockwise
+    assert np.ptp(ring, axis=0).max() == pytest.approx(1.0)
+    assert LinearRing(ring).is_simple
+    assert np.all(edge_lengths(ring) > 0)  # no repeated vertex
+
+
+def test_named_outlines_are_their_characters_outlines():
+    for name, codepoint in OUTLINE_CODEPOINTS.items():
+        np.testing.assert_array_equal(character_outline(chr(codepoint)), glyph_outline(name))
+
+
+@pytest.mark.parametrize("char", [" ", "\u200b", "ab", "", 5, "\U0010ffff"])
+def test_characters_without_an_outline_are_refused(char):
+    with pytest.raises(ValueError, match="char"):
+        character_outline(char)

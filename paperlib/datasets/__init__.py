@@ -40,7 +40,7 @@ from .exemplars import (
 )
 from .hershey import DEFAULT_STROKE_WIDTH, hershey_fonts, hershey_glyph, hershey_glyphs
 from .images import grayscale_image, grayscale_names, photograph, photograph_names
-from .outlines import glyph_outline, glyph_outlines, outline_names
+from .outlines import character_outline, glyph_outline, glyph_outlines, outline_names
 from .sketches import LEAF_KINDS, MAX_TREMOR, MAX_WOBBLE, hand_drawn_curve, leaf_outline, leaf_outlines
 from .stipple import andrews_like_tones, stipple_tone_sheet, stipple_tone_texture
 from .strokepatterns import (
@@ -71,6 +71,7 @@ __all__ = [
     "coastlines",
     "country_english_names",
     "country_names",
+    "character_outline",
     "country_outline",
     "drawn_glyph",
     "drawn_glyph_exemplar",

@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in ten families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in eleven families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -62,7 +62,9 @@ duplex Greek, a second Cyrillic and two more blackletters, fixed before that rev
 once after it (it failed on Greek pi and lambda, one extremity apart, which led to splitting a group
 where two features agree, :func:`paperlib.arrangement.categorize`); and ``"held_out_9"``, symbol and
 kana faces never used before (markers, symbols, a sans, kana, an italic), fixed before that revision
-was written into the package and checked once after it.
+was written into the package and checked once after it; and ``"outlines"``, outer outlines of DejaVu
+Sans characters (another tool's font, ``font="dejavu_outlines"``), whose first three cases led to
+cutting extremity modes into unimodal runs and whose chess pieces and shapes were checked once after.
 
 Written by hand: no library draws glyphs with a hand's variation.
 
@@ -86,7 +88,7 @@ from paperlib._checks import as_generator, integer_at_least, positive_number
 from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import PointPattern, Window
 
-from .exemplars import Exemplar, _frame, _glyph
+from .exemplars import OUTLINE_FONT, Exemplar, _frame, _glyph
 
 __all__ = ["GlyphType", "categorization_cases", "drawn_glyph", "drawn_glyph_exemplar"]
 
@@ -201,7 +203,9 @@ def drawn_glyph(char: str, size: float, *, angle: float = 0.0, jitter: float = 0
         RMS of each stroke's sideways tremor, as a fraction of ``size``, in ``[0, 0.03]`` (default
         0.008).
     font : str, optional
-        Hershey font (default ``"futural"``).
+        Hershey font (default ``"futural"``), or ``"dejavu_outlines"``
+        (:data:`~paperlib.datasets.exemplars.OUTLINE_FONT`): ``char`` is then any character of DejaVu
+        Sans (``"♣"``, ``"♔"``, ``"★"``...), drawn as its outer outline, one closed pen line.
     rng : None, int or numpy.random.Generator
         Seed of the hand.
 
@@ -492,10 +496,26 @@ HELD_OUT_9_CASES = {
     "held9_control_club": ("one type, a pictogram (control)", (("f", 0.05, 50),)),
     "held9_control_k": ("one type, an italic in parallel pen lines (control)", (("k", 0.05, 50),)),
 }
+#: Drawings from another tool's font: outer outlines of DejaVu Sans characters (matplotlib's font,
+#: :data:`~paperlib.datasets.exemplars.OUTLINE_FONT`) redrawn by the same hand. The suits, florettes and mixed
+#: dingbats showed that extremity counts of two types can all stand above the uniform background, one
+#: MM-mode, with a dip between them (which led to cutting extremity modes into unimodal runs); the chess
+#: pieces and shapes were fixed before that change and checked once after it.
+OUTLINE_CASES = {
+    "outline_suits_3": ("extremities and elongation", (("♥", 0.05, 25), ("♣", 0.05, 25), ("♠", 0.05, 25))),
+    "outline_florettes_3": ("extremities", (("✿", 0.05, 25), ("✾", 0.05, 25), ("☘", 0.05, 25))),
+    "outline_mixed_4": ("extremities", (("♥", 0.05, 20), ("✽", 0.05, 20), ("❦", 0.05, 20), ("⚘", 0.05, 20))),
+    "outline_chess_3": ("extremities and elongation", (("♔", 0.05, 25), ("♖", 0.05, 25), ("♙", 0.05, 25))),
+    "outline_knight_bishop_2": ("extremities and elongation", (("♘", 0.05, 30), ("♗", 0.05, 30))),
+    "outline_shapes_4": ("extremities and elongation", (("★", 0.05, 20), ("✈", 0.05, 20), ("✂", 0.05, 20),
+                                                         ("☂", 0.05, 20))),
+    "outline_control_club": ("one type (control)", (("♣", 0.05, 50),)),
+    "outline_control_knight": ("one type (control)", (("♘", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
              "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES,
-             "held_out_9": HELD_OUT_9_CASES}
+             "held_out_9": HELD_OUT_9_CASES, "outlines": OUTLINE_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -514,12 +534,18 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held9_control_club": "symbolic", "held9_control_k": "astrology"}
 
 
+def _font_of(case: str) -> str:
+    if case.startswith("outline_"):
+        return OUTLINE_FONT
+    return _HELD_OUT_FONTS.get(case, "futural")
+
+
 def categorization_cases(family: str = "main", rng=None) -> dict:
     """The test matrix of categorizations: arrangements of 1 to 5 hand-drawn glyph types with truth.
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", ..., "held_out_9"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_9", "outlines"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -532,6 +558,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         blackletters.
         ``"held_out_8"``: :data:`HELD_OUT_8_CASES`, simplex and duplex Greek, Cyrillic, blackletters.
         ``"held_out_9"``: :data:`HELD_OUT_9_CASES`, markers, symbols, a sans, kana and an italic.
+        ``"outlines"``: :data:`OUTLINE_CASES`, outer outlines of DejaVu Sans dingbats and chess pieces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
         another is added after it.
@@ -551,5 +578,5 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         raise ValueError(f"family must be one of {tuple(_FAMILIES)}, got {family!r}")
     table = _FAMILIES[family]
     children = as_generator(rng).spawn(len(table))
-    return {name: (differs, drawn_glyph_exemplar(types, font=_HELD_OUT_FONTS.get(name, "futural"), rng=child))
+    return {name: (differs, drawn_glyph_exemplar(types, font=_font_of(name), rng=child))
             for (name, (differs, types)), child in zip(table.items(), children)}

@@ -87,11 +87,12 @@ from pathlib import Path
 import numpy as np
 
 from paperlib._checks import as_generator, budget, check_budget, file_path, positive_number
-from paperlib.geometry import Element
+from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import MultiStraussHard, PointPattern, Window, rmh
 from paperlib.pointprocess.simulate import MAX_STEPS
 
-from .hershey import hershey_glyph
+from .hershey import DEFAULT_STROKE_WIDTH, hershey_glyph
+from .outlines import character_outline
 
 __all__ = [
     "Exemplar",
@@ -226,8 +227,21 @@ class _Glyph:
     pen: float  # pen width after scaling
 
 
+#: The ``font`` of the glyph generators that draws a character of DejaVu Sans as its outer outline
+#: (:func:`~paperlib.datasets.character_outline`), one closed pen line of Hershey's default width.
+OUTLINE_FONT = "dejavu_outlines"
+
+
+def _font_glyph(char: str, font: str) -> Element:
+    """The glyph of one Hershey font, or the DejaVu outline of a character for :data:`OUTLINE_FONT`."""
+    if font != OUTLINE_FONT:
+        return hershey_glyph(char, font)
+    ring = character_outline(char)
+    return Element((Stroke(np.vstack([ring, ring[:1]]), DEFAULT_STROKE_WIDTH),), name=f"{font}:{char}")
+
+
 def _glyph(char: str, font: str, size: float) -> _Glyph:
-    glyph = hershey_glyph(char, font)
+    glyph = _font_glyph(char, font)
     xmin, ymin, xmax, ymax = glyph.bounds()
     extent = max(xmax - xmin, ymax - ymin)
     if extent <= 0:

@@ -62,7 +62,7 @@ from paperlib.geometry import (
     signed_area,
 )
 
-__all__ = ["outline_names", "glyph_outline", "glyph_outlines"]
+__all__ = ["outline_names", "glyph_outline", "glyph_outlines", "character_outline"]
 
 OUTLINE_CODEPOINTS = {
     "club": 0x2663,
@@ -108,6 +108,8 @@ def _glyph_polygons(codepoint: int) -> list[np.ndarray]:
     path = font_path()
     if codepoint not in FT2Font(path).get_charmap():
         raise RuntimeError(f"U+{codepoint:04X} is missing from {path}")
+    if not chr(codepoint).isprintable() or chr(codepoint).isspace():
+        return []  # nothing drawn (and matplotlib's TextPath fails on an empty path)
     text = TextPath((0, 0), chr(codepoint), size=_FLATTEN_SIZE, prop=FontProperties(fname=path))
     return text.to_polygons()
 
@@ -118,15 +120,50 @@ def _normalised(points: np.ndarray) -> np.ndarray:
     return centred / np.ptp(centred, axis=0).max()
 
 
-@lru_cache(maxsize=None)
 def _outer_outline(name: str) -> np.ndarray:
+    return _outer_boundary(OUTLINE_CODEPOINTS[name])
+
+
+@lru_cache(maxsize=256)
+def _outer_boundary(codepoint: int) -> np.ndarray:
     # Each polygon without its repeated end point and zero-length edges, counter-clockwise
     # (a zero-area polygon is left unreversed, which cannot matter: it never wins the max).
-    polygons = _glyph_polygons(OUTLINE_CODEPOINTS[name])
-    rings = [oriented_ccw(drop_repeated_vertices(p)) for p in polygons]
+    polygons = _glyph_polygons(codepoint)
+    rings = [oriented_ccw(drop_repeated_vertices(p)) for p in polygons if len(p) >= 4]
+    if not rings:
+        raise ValueError(f"U+{codepoint:04X} ({chr(codepoint)!r}) draws nothing in DejaVu Sans: it has no outline")
     outer = _normalised(max(rings, key=signed_area))
     outer.setflags(write=False)
     return outer
+
+
+def character_outline(char: str) -> np.ndarray:
+    """The outer boundary of any character of DejaVu Sans, as :func:`glyph_outline` gives the named ones.
+
+    Parameters
+    ----------
+    char : str
+        A single character that DejaVu Sans draws (letters, symbols, dingbats, chess pieces:
+        ``"♔"``, ``"★"``, ``"✈"``...).
+
+    Returns
+    -------
+    ndarray, shape (n, 2), float64, read-only
+        matplotlib's flattening of the largest contour: counter-clockwise, no repeated end point,
+        centroid of the enclosed region at the origin, longer bounding-box side 1. Holes and every
+        other contour are dropped (an ``"i"``'s dot, an ``"o"``'s counter).
+
+    Raises
+    ------
+    ValueError
+        If ``char`` is not a single character, or DejaVu Sans has no glyph for it or draws nothing.
+    """
+    if not isinstance(char, str) or len(char) != 1:
+        raise ValueError(f"char must be a single character, got {char!r}")
+    try:
+        return _outer_boundary(ord(char))
+    except (RuntimeError, ValueError) as error:  # not in the font's character map, or drawn as nothing
+        raise ValueError(f"char={char!r} has no outline: {error}") from None
 
 
 def glyph_outline(name: str, n_points: int | None = None, *, max_points: int = MAX_RESAMPLE_POINTS) -> np.ndarray:
