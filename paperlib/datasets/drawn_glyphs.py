@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in eleven families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in twelve families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -62,7 +62,9 @@ duplex Greek, a second Cyrillic and two more blackletters, fixed before that rev
 once after it (it failed on Greek pi and lambda, one extremity apart, which led to splitting a group
 where two features agree, :func:`paperlib.arrangement.categorize`); and ``"held_out_9"``, symbol and
 kana faces never used before (markers, symbols, a sans, kana, an italic), fixed before that revision
-was written into the package and checked once after it; and ``"outlines"``, outer outlines of DejaVu
+was written into the package and checked once after it; and ``"held_out_10"``, outlined polygons and
+pictograms one corner apart and letters one stroke end apart, fixed before a witness beyond the paper's
+features (the ink's length) was written into the package and checked once after it; and ``"outlines"``, outer outlines of DejaVu
 Sans characters (another tool's font, ``font="dejavu_outlines"``), whose first three cases led to
 cutting extremity modes into unimodal runs and whose chess pieces and shapes were checked once after.
 
@@ -512,10 +514,27 @@ OUTLINE_CASES = {
     "outline_control_club": ("one type (control)", (("♣", 0.05, 50),)),
     "outline_control_knight": ("one type (control)", (("♘", 0.05, 50),)),
 }
+#: Tenth held-out family, fixed before a witness beyond the paper's five features (the ink's length) was
+#: written into the package and checked once after it: shapes one corner apart drawn as outlines (polygons,
+#: DejaVu pictograms), letters one stroke end apart (futural 'P' and 'R', serif 'n', 'h' and 'm'), an
+#: italic's two sizes, and controls of a pictogram, a complex script and a capital.
+HELD_OUT_10_CASES = {
+    "held10_polygons_4": ("extremities (corners)", (("▲", 0.05, 25), ("■", 0.05, 25), ("⬟", 0.05, 25),
+                                                    ("⬢", 0.05, 25))),
+    "held10_outline_mixed_3": ("extremities and elongation", (("⚓", 0.05, 25), ("☎", 0.05, 25),
+                                                              ("♦", 0.05, 25))),
+    "held10_letters_2": ("extremities", (("P", 0.06, 35), ("R", 0.06, 35))),
+    "held10_letters_3": ("extremities and elongation", (("n", 0.05, 30), ("h", 0.05, 30), ("m", 0.05, 30))),
+    "held10_area_2": ("area (sizes x2.3)", (("g", 0.035, 35), ("g", 0.08, 25, "G-big"))),
+    "held10_control_anchor": ("one type, a pictogram's outline (control)", (("⚓", 0.05, 50),)),
+    "held10_control_script_f": ("one type, a cursive glyph (control)", (("f", 0.05, 50),)),
+    "held10_control_r": ("one type (control)", (("R", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
              "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES,
-             "held_out_9": HELD_OUT_9_CASES, "outlines": OUTLINE_CASES}
+             "held_out_9": HELD_OUT_9_CASES, "held_out_10": HELD_OUT_10_CASES,
+             "outlines": OUTLINE_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -531,7 +550,10 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held8_elongation_2": "gothgrt", "held8_mixed_4": "greek", "held8_control_e": "gothicita",
                    "held8_control_m": "cyrilc_1", "held9_area_2": "meteorology", "held9_topology_3": "markers",
                    "held9_elongation_2": "symbolic", "held9_mixed_4": "japanese", "held9_mixed_markers_4": "markers",
-                   "held9_control_club": "symbolic", "held9_control_k": "astrology"}
+                   "held9_control_club": "symbolic", "held9_control_k": "astrology",
+                   "held10_polygons_4": OUTLINE_FONT, "held10_outline_mixed_3": OUTLINE_FONT,
+                   "held10_letters_3": "rowmans", "held10_area_2": "timesi", "held10_control_anchor": OUTLINE_FONT,
+                   "held10_control_script_f": "scriptc"}
 
 
 def _font_of(case: str) -> str:
@@ -545,7 +567,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", ..., "held_out_9", "outlines"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_10", "outlines"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -558,6 +580,8 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         blackletters.
         ``"held_out_8"``: :data:`HELD_OUT_8_CASES`, simplex and duplex Greek, Cyrillic, blackletters.
         ``"held_out_9"``: :data:`HELD_OUT_9_CASES`, markers, symbols, a sans, kana and an italic.
+        ``"held_out_10"``: :data:`HELD_OUT_10_CASES`, outlined polygons and pictograms, letters one
+        stroke end apart.
         ``"outlines"``: :data:`OUTLINE_CASES`, outer outlines of DejaVu Sans dingbats and chess pieces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
