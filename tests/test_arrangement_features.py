@@ -245,10 +245,13 @@ def test_feature_table():
         "elongation_raw",
         "extremities_raw",
         "crossings_raw",
+        "length_raw",
     ]
     assert isinstance(table.index, pd.RangeIndex) and len(table) == 4
     assert table.extremities_raw.tolist() == [4, 2, 8, 3]
     assert table.crossings_raw.tolist() == [1, 0, 4, 0]
+    # Skeleton lengths: the two diagonals of 'x' (11 x 14 units), '-' (18 units), 'L' (21 + 12 units).
+    assert table.length_raw[[0, 1, 3]].tolist() == pytest.approx([2 * np.hypot(11, 14) * UNIT, 18 * UNIT, 33 * UNIT])
     assert np.allclose(table.extremities, table.extremities_raw / 10)
     assert np.allclose(table.crossings, table.crossings_raw / 10)
     # 'x' with its pen: (11 + 1) x (14 + 1) grid units, taller than wide.

@@ -389,7 +389,9 @@ def element_features(
         ``elongation``, ``extremities``, ``crossings``, the paper's tags ``large`` and
         ``very_elongated``, and the raw values ``area_raw`` (box area), ``orientation_raw``
         (radians, ``[0, pi)``), ``elongation_raw`` (``inf`` for a straight stroke without
-        width), ``extremities_raw`` and ``crossings_raw`` (counts). ``attrs`` records the
+        width), ``extremities_raw`` and ``crossings_raw`` (counts), and ``length_raw``, the total
+        length of the element's strokes (not one of the paper's features: the recursive
+        categorization's witness, :func:`~paperlib.arrangement.categorize`). ``attrs`` records the
         parameters and ``topology_read_on`` (``"strokes"`` or ``"ink"``).
 
     Raises
@@ -440,6 +442,7 @@ def element_features(
             "elongation_raw": elongations,
             "extremities_raw": extremities,
             "crossings_raw": crossings,
+            "length_raw": stack.element_lengths,
         }
     )
     table.attrs.update(

@@ -284,6 +284,13 @@ class StackedStrokes:
         """Element index of every vertex, shape ``(n,)``."""
         return self.stroke_element[self.vertex_stroke]
 
+    @cached_property
+    def element_lengths(self) -> np.ndarray:
+        """Total length of every element's strokes (its skeleton, pen width left out), shape ``(n_elements,)``."""
+        same_stroke = self.vertex_stroke[1:] == self.vertex_stroke[:-1]
+        segments = np.hypot(*np.diff(self.vertices, axis=0).T)[same_stroke]
+        return np.bincount(self.vertex_element[1:][same_stroke], weights=segments, minlength=self.n_elements)
+
     @property
     def element_vertex_offsets(self) -> np.ndarray:
         """Element ``e`` owns vertices ``[offsets[e], offsets[e + 1])``, shape ``(n_elements + 1,)``."""
