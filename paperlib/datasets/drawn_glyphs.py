@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in twelve families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in thirteen families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -64,7 +64,10 @@ where two features agree, :func:`paperlib.arrangement.categorize`); and ``"held_
 kana faces never used before (markers, symbols, a sans, kana, an italic), fixed before that revision
 was written into the package and checked once after it; and ``"held_out_10"``, outlined polygons and
 pictograms one corner apart and letters one stroke end apart, fixed before a witness beyond the paper's
-features (the ink's length) was written into the package and checked once after it; and ``"outlines"``, outer outlines of DejaVu
+features (the ink's length) was written into the package and checked once after it (it failed on a
+looped script 'f' whose crossing the hand makes or unmakes, and on outlined polygons); and
+``"held_out_11"``, looped cursive letters, serif digits and dingbats, fixed before the revision that
+followed and checked once after it; and ``"outlines"``, outer outlines of DejaVu
 Sans characters (another tool's font, ``font="dejavu_outlines"``), whose first three cases led to
 cutting extremity modes into unimodal runs and whose chess pieces and shapes were checked once after.
 
@@ -530,11 +533,24 @@ HELD_OUT_10_CASES = {
     "held10_control_script_f": ("one type, a cursive glyph (control)", (("f", 0.05, 50),)),
     "held10_control_r": ("one type (control)", (("R", 0.05, 50),)),
 }
+#: Eleventh held-out family, fixed after the tenth had failed and before the revision it led to; checked once
+#: after it: looped cursive letters and serif digits (crossings the hand may make or unmake), outlined
+#: dingbats, a futural letter's two sizes, and controls of looped letters, a digit and a heart's outline.
+HELD_OUT_11_CASES = {
+    "held11_cursive_3": ("crossings and extremities", (("b", 0.05, 30), ("x", 0.05, 30), ("o", 0.04, 30))),
+    "held11_digits_3": ("crossings and extremities", (("3", 0.06, 30), ("7", 0.06, 30), ("8", 0.06, 30))),
+    "held11_outline_3": ("extremities", (("✚", 0.05, 25), ("❤", 0.05, 25), ("✦", 0.05, 25))),
+    "held11_area_2": ("area (sizes x2.3)", (("k", 0.035, 35), ("k", 0.08, 25, "K-big"))),
+    "held11_control_script_l": ("one type, a looped cursive glyph (control)", (("l", 0.06, 50),)),
+    "held11_control_cursive_b": ("one type, a looped cursive glyph (control)", (("b", 0.05, 50),)),
+    "held11_control_8": ("one type (control)", (("8", 0.06, 50),)),
+    "held11_control_heart": ("one type, a pictogram's outline (control)", (("❤", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
              "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES,
              "held_out_9": HELD_OUT_9_CASES, "held_out_10": HELD_OUT_10_CASES,
-             "outlines": OUTLINE_CASES}
+             "held_out_11": HELD_OUT_11_CASES, "outlines": OUTLINE_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -553,7 +569,10 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held9_control_club": "symbolic", "held9_control_k": "astrology",
                    "held10_polygons_4": OUTLINE_FONT, "held10_outline_mixed_3": OUTLINE_FONT,
                    "held10_letters_3": "rowmans", "held10_area_2": "timesi", "held10_control_anchor": OUTLINE_FONT,
-                   "held10_control_script_f": "scriptc"}
+                   "held10_control_script_f": "scriptc", "held11_cursive_3": "cursive", "held11_digits_3": "rowmans",
+                   "held11_outline_3": OUTLINE_FONT, "held11_control_script_l": "scripts",
+                   "held11_control_cursive_b": "cursive", "held11_control_8": "rowmans",
+                   "held11_control_heart": OUTLINE_FONT}
 
 
 def _font_of(case: str) -> str:
@@ -567,7 +586,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", ..., "held_out_10", "outlines"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_11", "outlines"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -582,6 +601,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         ``"held_out_9"``: :data:`HELD_OUT_9_CASES`, markers, symbols, a sans, kana and an italic.
         ``"held_out_10"``: :data:`HELD_OUT_10_CASES`, outlined polygons and pictograms, letters one
         stroke end apart.
+        ``"held_out_11"``: :data:`HELD_OUT_11_CASES`, looped cursive letters, serif digits, dingbats.
         ``"outlines"``: :data:`OUTLINE_CASES`, outer outlines of DejaVu Sans dingbats and chess pieces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
