@@ -797,6 +797,8 @@ def _split_node(name: str, members: np.ndarray, values: dict, parameters: dict) 
         histogram = _node_histogram(feature, own, parameters)
         if np.unique(histogram.groups).size == 1 and feature in _GAP_FEATURES:
             histogram = _split_at_value_gap(histogram, parameters)
+        if feature == "crossings" and np.unique(histogram.groups).size > 1:
+            histogram = _confirmed_crossing_groups(histogram, members, values, parameters)
         if np.unique(histogram.groups).size > 1:
             children = tuple(f"{prefix}{feature}{group[len('mode'):]}" if group.startswith("mode")
                              else f"{prefix}{feature}_{group}" for group in histogram.group_names)
@@ -817,21 +819,15 @@ def _joint_split(name: str, members: np.ndarray, values: dict, parameters: dict)
     the group, or None.
     """
     least = parameters["min_category_size"]
-    resolution = {"area": AREA_DECADES / (2 * parameters["bins"]), "elongation": 1.0 / parameters["bins"],
-                  "crossings": 1.0, "extremities": 1.0, "ink_length": INK_LENGTH_RESOLUTION}
+    resolution = _joint_resolutions(parameters)
     own = {feature: values[feature][members] for feature in JOINT_FEATURES}
     tests = []
     for feature in JOINT_FEATURES:
         for low in _candidate_cuts(feature, own[feature], least):
             if abs(np.median(own[feature][low]) - np.median(own[feature][~low])) < resolution[feature]:
                 continue
-            for witness in JOINT_FEATURES:
-                x = own[witness]
-                if witness == feature or np.ptp(x) <= _EQUAL_FEATURES:
-                    continue
-                difference = abs(np.median(x[low]) - np.median(x[~low]))
-                p_value = float(mannwhitneyu(x[low], x[~low]).pvalue)
-                tests.append((p_value, difference >= resolution[witness], feature, witness, low))
+            tests += [(p_value, apart, feature, witness, low)
+                      for p_value, apart, witness in _witness_tests(own, low, feature, resolution)]
     confirmed = [test for test in tests if test[1]]
     if not confirmed:
         return None
@@ -844,6 +840,63 @@ def _joint_split(name: str, members: np.ndarray, values: dict, parameters: dict)
     prefix = "" if name == "all" else f"{name}."
     return Split(name, members, feature, histogram, (f"{prefix}{feature}0", f"{prefix}{feature}1"), "split",
                  witness=witness, nfa=nfa)
+
+
+def _joint_resolutions(parameters: dict) -> dict:
+    """The smallest difference of medians by which each feature of :data:`JOINT_FEATURES` sets two sides apart."""
+    return {"area": AREA_DECADES / (2 * parameters["bins"]), "elongation": 1.0 / parameters["bins"],
+            "crossings": 1.0, "extremities": 1.0, "ink_length": INK_LENGTH_RESOLUTION}
+
+
+def _witness_tests(own: dict, low: np.ndarray, feature: str, resolution: dict) -> list[tuple[float, bool, str]]:
+    """(Mann-Whitney p-value, medians apart by the resolution, witness) for each feature but ``feature``.
+
+    One count of crossings and one of extremities are one event, not two features agreeing: where
+    the hand makes two strokes touch, an end that overshoots is a crossing and an end, one that
+    stops short an end less. So a count confirms a cut on the other count from two counts apart.
+    """
+    tests = []
+    for witness in JOINT_FEATURES:
+        x = own[witness]
+        if witness == feature or np.ptp(x) <= _EQUAL_FEATURES:
+            continue
+        needed = resolution[witness] * (2 if {feature, witness} <= set(_COUNT_FEATURES) else 1)
+        difference = abs(np.median(x[low]) - np.median(x[~low]))
+        tests.append((float(mannwhitneyu(x[low], x[~low]).pvalue), bool(difference >= needed), witness))
+    return tests
+
+
+def _confirmed_crossing_groups(histogram: FeatureHistogram, members: np.ndarray, values: dict,
+                               parameters: dict) -> FeatureHistogram:
+    """Merge crossing groups one count apart that no other feature sets apart.
+
+    A hand makes or unmakes the near-touch of two strokes in some copies of a type (a looped
+    script 'f', a kana), which moves the count by one and nothing else. Two groups whose counts
+    are one apart stay apart only when a witness confirms them as in :func:`_joint_split` (medians
+    a resolution apart, rank-sum NFA over the witnesses tried below ``epsilon * JOINT_STRICTNESS``);
+    counts further apart are not the hand's doing and stay apart.
+    """
+    groups = histogram.groups
+    present = {k: np.unique(histogram.values[groups == k]) for k in np.unique(groups)}
+    clusters = []
+    for k in sorted(present, key=lambda k: present[k][0]):
+        if clusters and present[k][0] - present[clusters[-1][-1]][-1] <= 1:
+            lower = np.isin(groups, clusters[-1])
+            subset = lower | (groups == k)
+            own = {feature: values[feature][members[subset]] for feature in JOINT_FEATURES}
+            tests = _witness_tests(own, lower[subset], "crossings", _joint_resolutions(parameters))
+            nfa = len(tests) * min((p for p, apart, _ in tests if apart), default=np.inf)
+            if nfa >= parameters["epsilon"] * JOINT_STRICTNESS:
+                clusters[-1].append(k)
+                continue
+        clusters.append([k])
+    if len(clusters) == len(present):
+        return histogram
+    cluster_of = np.zeros(len(histogram.group_names), dtype=np.int64)
+    for j, cluster in enumerate(clusters):
+        cluster_of[cluster] = j
+    names = tuple(f"mode{j}" for j in range(len(clusters)))
+    return replace(histogram, groups=_read_only(cluster_of[groups]), group_names=names)
 
 
 def _candidate_cuts(feature: str, own: np.ndarray, least: int) -> list[np.ndarray]:
