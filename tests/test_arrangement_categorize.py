@@ -481,6 +481,34 @@ def test_an_ink_length_difference_below_its_resolution_does_not_divide():
     assert split.histogram.groups.tolist() == [0] * 50 + [1] * 50
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_crossing_the_hand_makes_in_some_copies_does_not_divide(seed):
+    # A looped script 'f' (Hershey scriptc): the hand closes its loop in a third to a half of the copies,
+    # 0 or 1 crossing and one extremity more or less, nothing else apart (held-out case held10_control_script_f)
+    exemplar = drawn((("f", 0.05, 50),), seed, font="scriptc")
+    result = categorize(exemplar.elements, exemplar.window.area)
+    crossings = result.features["crossings_raw"]
+    assert 5 <= (crossings == 0).sum() <= 45 and result.n_categories == 1
+
+
+def test_crossing_modes_one_count_apart_stay_apart_only_when_confirmed():
+    from paperlib.arrangement.categorize import _split_node
+
+    rng = np.random.default_rng(3)
+    values = one_type_values(rng, 100)
+    values["crossings"] = np.repeat([0.0, 1.0], 50)
+    parameters = {**joint_parameters(), "histogram_range": "domain", "orientation": "unwrap"}
+    assert _split_node("all", np.arange(100), values, parameters).status == "one_mode"
+    values["extremities"] = np.repeat([4.0, 5.0], 50)  # one extremity more with the crossing: the same event
+    assert _split_node("all", np.arange(100), values, parameters).status == "one_mode"
+    values["ink_length"] = np.repeat([0.25, 0.35], 50) + rng.normal(0, 0.01, 100)
+    split = _split_node("all", np.arange(100), values, parameters)
+    assert split.feature == "crossings" and split.histogram.groups.tolist() == [0] * 50 + [1] * 50
+    values["ink_length"] = rng.normal(0.25, 0.01, 100)
+    values["crossings"] = np.repeat([0.0, 2.0], 50)  # two counts apart: not the hand's doing
+    assert _split_node("all", np.arange(100), values, parameters).feature == "crossings"
+
+
 # --------------------------------------------------------------------------- features measured once
 
 
