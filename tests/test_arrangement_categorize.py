@@ -509,6 +509,27 @@ def test_crossing_modes_one_count_apart_stay_apart_only_when_confirmed():
     assert _split_node("all", np.arange(100), values, parameters).feature == "crossings"
 
 
+def test_a_group_whose_ink_lengths_are_not_unimodal_divides():
+    from paperlib.arrangement.categorize import JOINT_STRICTNESS, _dip_split
+
+    rng = np.random.default_rng(4)
+    values = one_type_values(rng, 50)
+    assert _dip_split("all", np.arange(50), values, joint_parameters()) is None  # one normal law
+    # a chess king and pawn: ink lengths 0.265 and 0.239, each within +-0.005, nothing else apart
+    values["ink_length"] = np.repeat([0.239, 0.265], 25) + rng.uniform(-0.005, 0.005, 50)
+    split = _dip_split("all", np.arange(50), values, joint_parameters())
+    assert split.feature == "ink_length" and split.witness is None and split.nfa < JOINT_STRICTNESS
+    assert split.histogram.groups.tolist() == [0] * 25 + [1] * 25
+    # closer modes, two evenly filled intervals 0.017 apart (dip p ~ 1.7e-4): meaningful at epsilon = 1,
+    # not at 0.1; 0.012 apart (p ~ 0.78), at no epsilon
+    spread = np.linspace(-0.005, 0.005, 25)
+    values["ink_length"] = np.r_[0.245 + spread, 0.262 + spread]
+    assert 0 < _dip_split("all", np.arange(50), values, joint_parameters()).nfa < 1e-3
+    assert _dip_split("all", np.arange(50), values, joint_parameters(epsilon=0.1)) is None
+    values["ink_length"] = np.r_[0.245 + spread, 0.257 + spread]
+    assert _dip_split("all", np.arange(50), values, joint_parameters(epsilon=100.0)) is None
+
+
 # --------------------------------------------------------------------------- features measured once
 
 
