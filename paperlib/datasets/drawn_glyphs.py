@@ -42,7 +42,7 @@ box centres. The order of the types is shuffled, so labels and positions carry n
 
 :func:`categorization_cases` lays out the test matrix used to judge ``categorize``: 2 to 5 types
 differing in area, topology or elongation, at several relative sizes and counts, with a
-single-type control, in fourteen families of glyphs: ``"main"``, the glyphs the method was designed
+single-type control, in fifteen families of glyphs: ``"main"``, the glyphs the method was designed
 on; ``"held_out"``, other glyphs, partly of another Hershey font, checked once the method was fixed
 (it failed, which led to the revision described in ``paperlib.arrangement.categorize``);
 ``"held_out_2"``, yet other glyphs, fixed before that revision and checked once after it;
@@ -68,8 +68,10 @@ features (the ink's length) was written into the package and checked once after 
 looped script 'f' whose crossing the hand makes or unmakes, and on outlined polygons); and
 ``"held_out_11"``, looped cursive letters, serif digits and dingbats, fixed before the revision that
 followed and checked once after it; and ``"held_out_12"``, Greek and looped cursive letters, digits
-and weather pictograms, fixed before joint splits were judged against the spread of their two sides;
-and ``"outlines"``, outer outlines of DejaVu
+and weather pictograms, fixed before a dip test of the ink's length was written and checked once after
+it (it failed on futural '2' and '5', 3 and 4 extremities in every copy); and ``"held_out_13"``,
+capitals, Times letters, digits and pictograms, fixed before the revision that followed and checked
+once after it; and ``"outlines"``, outer outlines of DejaVu
 Sans characters (another tool's font, ``font="dejavu_outlines"``), whose first three cases led to
 cutting extremity modes into unimodal runs and whose chess pieces and shapes were checked once after.
 
@@ -548,9 +550,9 @@ HELD_OUT_11_CASES = {
     "held11_control_8": ("one type (control)", (("8", 0.06, 50),)),
     "held11_control_heart": ("one type, a pictogram's outline (control)", (("❤", 0.05, 50),)),
 }
-#: Twelfth held-out family, fixed after the eleventh had been checked and before joint splits were judged
-#: against the spread of the two sides; to be checked once after: simplex Greek letters, looped cursive
-#: letters, futural digits, a serif letter's three sizes, outlined weather pictograms, and controls.
+#: Twelfth held-out family, fixed after the eleventh had been checked and before the dip test of the ink's
+#: length was written; checked once after it: simplex Greek letters, looped cursive letters, futural
+#: digits, a serif letter's three sizes, outlined weather pictograms, and controls.
 HELD_OUT_12_CASES = {
     "held12_greek_3": ("extremities and crossings", (("a", 0.05, 30), ("b", 0.06, 30), ("g", 0.05, 30))),
     "held12_cursive_3": ("extremities and elongation", (("h", 0.06, 30), ("k", 0.06, 30), ("n", 0.05, 30))),
@@ -563,11 +565,26 @@ HELD_OUT_12_CASES = {
     "held12_control_greek_b": ("one type (control)", (("b", 0.06, 50),)),
     "held12_control_5": ("one type (control)", (("5", 0.06, 50),)),
 }
+#: Thirteenth held-out family, fixed after the twelfth had failed (futural '2' and '5', one extremity apart in
+#: every copy) and before the revision it led to; checked once after it: futural capitals, Times lower-case
+#: letters, serif digits, outlined pictograms, a complex script's two sizes, and controls.
+HELD_OUT_13_CASES = {
+    "held13_capitals_3": ("extremities", (("E", 0.06, 30), ("F", 0.06, 30), ("K", 0.06, 30))),
+    "held13_times_3": ("extremities and elongation", (("r", 0.05, 30), ("v", 0.05, 30), ("y", 0.05, 30))),
+    "held13_digits_3": ("extremities and crossings", (("2", 0.06, 30), ("4", 0.06, 30), ("6", 0.06, 30))),
+    "held13_outline_3": ("extremities and elongation", (("♪", 0.05, 25), ("⚑", 0.05, 25), ("✎", 0.05, 25))),
+    "held13_area_2": ("area (sizes x2.3)", (("e", 0.035, 35), ("e", 0.08, 25, "E-big"))),
+    "held13_control_e_capital": ("one type (control)", (("E", 0.06, 50),)),
+    "held13_control_note": ("one type, a pictogram's outline (control)", (("♪", 0.05, 50),)),
+    "held13_control_times_y": ("one type, a serif glyph (control)", (("y", 0.05, 50),)),
+    "held13_control_4": ("one type (control)", (("4", 0.06, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
              "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES,
              "held_out_9": HELD_OUT_9_CASES, "held_out_10": HELD_OUT_10_CASES,
-             "held_out_11": HELD_OUT_11_CASES, "held_out_12": HELD_OUT_12_CASES, "outlines": OUTLINE_CASES}
+             "held_out_11": HELD_OUT_11_CASES, "held_out_12": HELD_OUT_12_CASES,
+             "held_out_13": HELD_OUT_13_CASES, "outlines": OUTLINE_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -591,7 +608,10 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held11_control_cursive_b": "cursive", "held11_control_8": "rowmans",
                    "held11_control_heart": OUTLINE_FONT, "held12_greek_3": "greeks", "held12_cursive_3": "scripts",
                    "held12_area_3": "rowmans", "held12_outline_3": OUTLINE_FONT, "held12_control_cloud": OUTLINE_FONT,
-                   "held12_control_script_h": "scripts", "held12_control_greek_b": "greeks"}
+                   "held12_control_script_h": "scripts", "held12_control_greek_b": "greeks",
+                   "held13_times_3": "timesr", "held13_digits_3": "rowmans", "held13_outline_3": OUTLINE_FONT,
+                   "held13_area_2": "scriptc", "held13_control_note": OUTLINE_FONT, "held13_control_times_y": "timesr",
+                   "held13_control_4": "rowmans"}
 
 
 def _font_of(case: str) -> str:
@@ -605,7 +625,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", ..., "held_out_12", "outlines"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_13", "outlines"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -623,6 +643,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         ``"held_out_11"``: :data:`HELD_OUT_11_CASES`, looped cursive letters, serif digits, dingbats.
         ``"held_out_12"``: :data:`HELD_OUT_12_CASES`, Greek and looped cursive letters, digits,
         weather pictograms.
+        ``"held_out_13"``: :data:`HELD_OUT_13_CASES`, capitals, Times letters, digits, pictograms.
         ``"outlines"``: :data:`OUTLINE_CASES`, outer outlines of DejaVu Sans dingbats and chess pieces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
