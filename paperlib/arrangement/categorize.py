@@ -131,7 +131,12 @@ the only one to span its box differently), on a telephone and a diamond (one cor
 lengths 0.02 apart, areas about one bin) and on serif 'n' and 'h' (elongations 0.12 apart, nothing
 else a resolution apart); ``"held_out_11"`` (20 case-seeds, then 18 with the dip test) fails on
 cursive 'b' and 'x' (ink lengths 0.038 apart, just under the resolution) and holds on its seven
-other cases, controls included. A type whose crossing the hand
+other cases, controls included. Two more, each checked once: ``"held_out_12"`` (41 of 180
+case-seeds) and ``"held_out_13"`` (42) fail where two types read counts one apart in every copy and
+nothing else is a resolution apart (futural '2' and '5', 'E' and 'K'; Times 'r', 'v', 'y', whose
+serifs give all three 5-6 corners), on looped cursive letters that lose a crossing in a few copies,
+and a simplex Greek 'beta' control splits at 2 seeds of 20 (a joint split of features the hand
+correlates within the type, NFA 3.7e-4). A type whose crossing the hand
 unmakes in a few copies (a kana) sends those copies to the type that has none. A single copy drawn
 with more bends than the rest of its type is set apart as the paper's outlier category. Drawings
 made of parallel pen lines (Hershey's complex, duplex, triplex and bold faces) are read on the

@@ -70,8 +70,8 @@ looped script 'f' whose crossing the hand makes or unmakes, and on outlined poly
 followed and checked once after it; and ``"held_out_12"``, Greek and looped cursive letters, digits
 and weather pictograms, fixed before a dip test of the ink's length was written and checked once after
 it (it failed on futural '2' and '5', 3 and 4 extremities in every copy); and ``"held_out_13"``,
-capitals, Times letters, digits and pictograms, fixed before the revision that followed and checked
-once after it; and ``"outlines"``, outer outlines of DejaVu
+capitals, Times letters, digits and pictograms, fixed after that and checked once with the method
+unchanged; and ``"outlines"``, outer outlines of DejaVu
 Sans characters (another tool's font, ``font="dejavu_outlines"``), whose first three cases led to
 cutting extremity modes into unimodal runs and whose chess pieces and shapes were checked once after.
 
@@ -566,7 +566,8 @@ HELD_OUT_12_CASES = {
     "held12_control_5": ("one type (control)", (("5", 0.06, 50),)),
 }
 #: Thirteenth held-out family, fixed after the twelfth had failed (futural '2' and '5', one extremity apart in
-#: every copy) and before the revision it led to; checked once after it: futural capitals, Times lower-case
+#: every copy) and checked once with the method unchanged (the revision tried after the twelfth, a final
+#: reassignment of every element to the nearest category, was not kept): futural capitals, Times lower-case
 #: letters, serif digits, outlined pictograms, a complex script's two sizes, and controls.
 HELD_OUT_13_CASES = {
     "held13_capitals_3": ("extremities", (("E", 0.06, 30), ("F", 0.06, 30), ("K", 0.06, 30))),
