@@ -6,7 +6,10 @@ This is what ``python -m paperlib reproduce`` and ``make reproduce`` do:
 2. execute each with papermill on a ``python3`` kernel that is *this* interpreter
    (a kernelspec written under ``build/jupyter``, never a kernel named in the
    notebook's metadata), passing ``seed``, ``quality`` and ``out_dir``; the executed
-   copy goes to ``build/notebooks/``, the source stays output-free;
+   copy goes to ``build/notebooks/``, the source stays output-free. The kernel talks over
+   Unix-domain sockets in a folder of its own, not TCP ports: jupyter_client picks TCP ports by
+   binding and releasing them, and a kernel started alongside another may find one taken and die
+   before replying (jupyter/jupyter_client#154, nteract/papermill#511);
 3. each notebook writes into a staging folder ``build/staging/<stem>/`` that replaces
    ``figures/<stem>/`` only when the notebook finished, so ``figures/`` never holds a
    half-run notebook;
@@ -23,6 +26,7 @@ import json
 import os
 import shutil
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,6 +42,7 @@ from .parallel import progress_enabled, run_many
 __all__ = [
     "NotebookRun",
     "find_notebooks",
+    "kernel_manager_on_sockets_in",
     "paper_and_figure",
     "reproduce",
     "run_notebook",
@@ -247,6 +252,7 @@ def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None 
     executed = layout.build / "notebooks" / path.name
     executed.parent.mkdir(parents=True, exist_ok=True)
     began = time.perf_counter()
+    sockets = Path(tempfile.mkdtemp(prefix="paperlib-kernel-"))  # short: a socket path holds <= 107 bytes
     try:
         papermill.execute_notebook(
             str(path),
@@ -257,14 +263,46 @@ def run_notebook(path, *, layout: Layout, quality: str = "ci", seed: int | None 
             cwd=str(path.parent),
             progress_bar={"desc": path.stem, "unit": "cell"} if progress_enabled(progress) else False,
             execution_timeout=timeout,
+            kernel_manager_class=kernel_manager_on_sockets_in(sockets),
         )
     except Exception as exc:  # a failing cell, a dead kernel, a timeout: report, don't crash the batch
         return NotebookRun(path.stem, False, time.perf_counter() - began, _first_line_of_error(exc))
+    finally:
+        shutil.rmtree(sockets, ignore_errors=True)
     seconds = time.perf_counter() - began
     if not (staging / repro.STATS_FILE).exists():
         return NotebookRun(path.stem, False, seconds, "finished without writing stats.json (no repro.start call)")
     _publish(staging, layout.figures / path.stem)
     return NotebookRun(path.stem, True, seconds)
+
+
+def kernel_manager_on_sockets_in(folder):
+    """A jupyter_client kernel manager class whose kernels listen on Unix-domain sockets in ``folder``.
+
+    Parameters
+    ----------
+    folder : str or Path
+        An existing folder of this kernel's own (the socket files are ``folder/kernel-<n>``).
+
+    Returns
+    -------
+    type
+        A subclass of ``jupyter_client.AsyncKernelManager`` (nbclient's default) with the ``ipc``
+        transport: no TCP port is chosen, so no other process can take it first.
+    """
+    from jupyter_client import AsyncKernelManager
+
+    folder = Path(instance_of(folder, (str, Path), "folder"))
+    if not folder.is_dir():
+        raise ValueError(f"folder must be an existing folder, got {str(folder)!r}")
+
+    class KernelManagerOnSockets(AsyncKernelManager):
+        def __init__(self, **kwargs):
+            super().__init__(**kwargs)
+            self.transport = "ipc"
+            self.ip = str(folder / "kernel")
+
+    return KernelManagerOnSockets
 
 
 def _run_task(task):

@@ -526,6 +526,7 @@ REGISTRY = {
     "paperlib.parallel.spawn_seeds": "rng=rng n=count",
     "paperlib.reproduce.NotebookRun": "notebook=str ok=any seconds=float",
     "paperlib.reproduce.find_notebooks": "notebooks_dir=any ; pattern=pattern",
+    "paperlib.reproduce.kernel_manager_on_sockets_in": "folder=path",
     "paperlib.reproduce.paper_and_figure": "stem=any",
     "paperlib.reproduce.reproduce": "; root=path quality=str jobs=count seed=rng timeout=float progress=bool figures_dir=path build_dir=path",
     "paperlib.reproduce.run_notebook": "path=path layout=any ; quality=str seed=rng timeout=float progress=bool",

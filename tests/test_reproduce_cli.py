@@ -15,6 +15,9 @@ pytestmark = pytest.mark.notebooks
 
 PARAMETERS = 'seed = 0\nquality = "ci"\nout_dir = "../figures/{stem}"'
 START = "from paperlib import repro\nrepro.start(out_dir, seed=seed, quality=quality)"
+#: How the kernel talks to papermill, recorded by the demo notebook (``ipc``: Unix-domain sockets).
+RECORD_TRANSPORT = ('from ipykernel import get_connection_info\n'
+                    'repro.record("transport", get_connection_info(unpack=True)["transport"])')
 
 
 def write_notebook(root, stem, body):
@@ -32,7 +35,7 @@ def project(tmp_path):
     write_notebook(
         tmp_path,
         "kim2009_fig01_demo",
-        """
+        textwrap.dedent("""
         import sys
         import matplotlib
         matplotlib.use("Agg")
@@ -43,7 +46,7 @@ def project(tmp_path):
         repro.record("answer", 6 * 7)
         repro.record("executable", sys.executable)
         repro.record("quality_seen", quality)
-        """,
+        """) + RECORD_TRANSPORT,
     )
     (tmp_path / "tests").mkdir()
     (tmp_path / "tests" / "expected_stats.toml").write_text(
@@ -63,6 +66,11 @@ def project(tmp_path):
             kind = "truth"
             value = "ci"
             source = "by construction: the --quality flag reaches the notebook"
+
+            [kim2009_fig01_demo.transport]
+            kind = "truth"
+            value = "ipc"
+            source = "by construction: kernels listen on Unix-domain sockets, no TCP port to lose to a race"
             """
         )
     )
@@ -77,7 +85,7 @@ def test_success_publishes_figures_index_and_executed_copy(project, capsys):
     source = (project / "notebooks" / "kim2009_fig01_demo.ipynb").read_text()
     assert run_cli(project) == 0
     out = capsys.readouterr().out
-    assert "all 1 notebook(s) ran and all 3 statistic(s)" in out
+    assert "all 1 notebook(s) ran and all 4 statistic(s)" in out
     figures = project / "figures" / "kim2009_fig01_demo"
     assert sorted(p.name for p in figures.iterdir()) == ["line.png", "stats.json"]
     assert repro.load_stats(figures / "stats.json")["statistics"]["executable"] == sys.executable
@@ -86,7 +94,7 @@ def test_success_publishes_figures_index_and_executed_copy(project, capsys):
     assert any(cell.get("outputs") is not None for cell in executed.cells)
     index = (project / "figures" / "INDEX.md").read_text()
     assert "Kim" in index and "fig01" in index and "| answer | 42 | 42 | exact | truth | pass |" in index
-    assert "| kim2009_fig01_demo | ci | 0 | 0 | 3 | 0 | 0 | 3 |" in index  # provenance: three truths
+    assert "| kim2009_fig01_demo | ci | 0 | 0 | 4 | 0 | 0 | 4 |" in index  # provenance: four truths
 
 
 def test_unknown_pattern_is_one_clear_line(project, capsys):
@@ -158,7 +166,8 @@ def test_missed_paper_claim_is_listed_once_and_the_ledger_written(project, capsy
             'xfail = "measured 42 at seed 0; cause: the demo computes 6 * 7"\n'
         )
     write_notebook(project, "kim2009_fig01_demo", 'repro.record("answer", 42)\nrepro.record("answer_paper", 42)\n'
-                   'import sys\nrepro.record("executable", sys.executable)\nrepro.record("quality_seen", quality)')
+                   'import sys\nrepro.record("executable", sys.executable)\nrepro.record("quality_seen", quality)\n'
+                   + RECORD_TRANSPORT)
     (project / "tests" / "claims").mkdir()
     (project / "tests" / "claims" / "kim2009.toml").write_text(
         'paper = "kim2009"\nfigures = 1\n\n[[claim]]\nwhere = "Fig. 1"\nclaim = "at least 50"\n'
@@ -271,7 +280,7 @@ def test_reproduce_on_a_dask_cluster_publishes_like_a_local_run(project):
                                   memory_limit="1GiB") as cluster, distributed.Client(cluster) as client:
         runs, table = reproduce(project, quality="ci", client=client)
     assert [run.notebook for run in runs] == ["kim2009_fig01_demo", "simhon2001_fig02_other"]
-    assert all(run.ok for run in runs) and table.ok.all() and len(table) == 4
+    assert all(run.ok for run in runs) and table.ok.all() and len(table) == 5
     stats = repro.load_stats(project / "figures" / "kim2009_fig01_demo" / "stats.json")["statistics"]
     assert stats["answer"] == 42 and stats["quality_seen"] == "ci"
     assert (project / "figures" / "simhon2001_fig02_other" / "stats.json").exists()
