@@ -950,10 +950,13 @@ def _confirmed_crossing_groups(histogram: FeatureHistogram, members: np.ndarray,
     if len(clusters) == len(present):
         return histogram
     cluster_of = np.zeros(len(histogram.group_names), dtype=np.int64)
+    names, numbered = [], {"mode": 0, "outlier": 0}
     for j, cluster in enumerate(clusters):
         cluster_of[cluster] = j
-    names = tuple(f"mode{j}" for j in range(len(clusters)))
-    return replace(histogram, groups=_read_only(cluster_of[groups]), group_names=names)
+        kind = "mode" if any(histogram.group_names[k].startswith("mode") for k in cluster) else "outlier"
+        names.append(f"{kind}{numbered[kind]}")
+        numbered[kind] += 1
+    return replace(histogram, groups=_read_only(cluster_of[groups]), group_names=tuple(names))
 
 
 def _candidate_cuts(feature: str, own: np.ndarray, least: int) -> list[np.ndarray]:
