@@ -97,6 +97,15 @@ def test_a_dot_of_ink_is_one_extremity():
     assert len(near_the_dot) == 1  # a point, or a few pixels of skeleton: a blob, one extremity
 
 
+@pytest.mark.parametrize("length", [0.0625, 0.125])
+def test_a_stroke_shorter_than_its_pen_is_one_dot(length):
+    """Its ink thins to a pixel or two, which skan builds no graph of (found by the property below)."""
+    element = Element((Stroke(np.array([[0.0625, 0.0], [0.0625, length]]), 0.25),))
+    strokes = ink_centrelines(element).strokes
+    assert len(strokes) == 1 and len(strokes[0].points) <= 3
+    assert np.hypot(*(strokes[0].points - (0.0625, length / 2)).T).max() < 0.25
+
+
 def test_centrelines_keep_name_pen_and_run_inside_the_ink():
     element = Element(BOLD_C.strokes, name="c")
     centrelines = ink_centrelines(element)

@@ -285,15 +285,39 @@ def _fill_narrow_holes(ink: np.ndarray, pen_pixels: float) -> np.ndarray:
 
 
 def _pruned_skeleton(skeleton: np.ndarray, radius: np.ndarray, spur_pixels: float):
-    """The skeleton's graph with its spurs removed, or None when nothing is left (an empty skeleton)."""
-    graph = Skeleton(skeleton) if skeleton.any() else None
+    """The skeleton's graph with its spurs removed, or None when no path is left (the ink is a dot)."""
+    graph = _skeleton_graph(skeleton)
     for _ in range(_MAX_PRUNING_ROUNDS):
         spurs = _spurs(graph, radius, spur_pixels) if graph is not None else []
         if not spurs:
             break
-        pruned = graph.prune_paths(spurs)  # the graph of the re-thinned image
-        graph = pruned if np.any(pruned.skeleton_image) else None
+        graph = _skeleton_graph(_without_paths(graph, spurs))
     return graph
+
+
+def _skeleton_graph(skeleton: np.ndarray):
+    """skan's graph of a skeleton image, or None when no two of its pixels touch.
+
+    skan builds no graph from isolated pixels (it raises on a one-pixel skeleton, e.g. the
+    ink of a stroke shorter than its pen); :func:`_dots` reads such components as dots.
+    """
+    neighbours = ndimage.convolve(skeleton.astype(np.uint8), np.ones((3, 3), np.uint8), mode="constant")
+    return Skeleton(skeleton) if np.any(skeleton & (neighbours > 1)) else None
+
+
+def _without_paths(graph: Skeleton, indices) -> np.ndarray:
+    """The skeleton image without the given paths' pixels, junctions kept, thinned again.
+
+    What ``Skeleton.prune_paths`` computes before it builds a graph, which it cannot do when
+    only isolated pixels are left.
+    """
+    image = np.array(graph.skeleton_image, dtype=bool)
+    for index in indices:
+        pixels = graph.path(index)
+        pixels = pixels[graph.degrees[pixels] <= 2]
+        rows, columns = np.round(graph.coordinates[pixels]).astype(int).T
+        image[rows, columns] = False
+    return skeletonize(image)
 
 
 def _spurs(graph: Skeleton, radius: np.ndarray, spur_pixels: float) -> list:
