@@ -282,6 +282,7 @@ REGISTRY = {
     "paperlib.arrangement.Split": "name=str members=counts feature=str histogram=any children=any status=str",
     "paperlib.arrangement.recursive_feature_values": "features=any",
     "paperlib.arrangement.adjusted_rand_index": "labels_a=any labels_b=any",
+    "paperlib.arrangement.separability_ceiling": "features=any labels=counts ; bins=count neighbours=count",
     "paperlib.arrangement.box_distance_matrix": "corners_a=points ; corners_b=points",
     "paperlib.arrangement.categorize": "elements=elements reference_area=float ; method=str epsilon=float topology=str rng=rng",
     "paperlib.arrangement.crossing_points": "element=elements ; curvature_scale=float join_tolerance=float topology=str",

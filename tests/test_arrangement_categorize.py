@@ -9,6 +9,7 @@ from paperlib.arrangement.categorize import (
     adjusted_rand_index,
     categorize,
     recursive_feature_values,
+    separability_ceiling,
     unwrapped_orientation,
 )
 from paperlib.arrangement.features import element_features
@@ -218,6 +219,36 @@ def test_one_element():
 
 
 # --------------------------------------------------------------------------- adjusted Rand index
+
+
+def test_separability_ceiling_recovers_distinct_types_and_not_a_random_labelling():
+    elements, truth = three_kinds(seed=3)
+    features = element_features(elements, REFERENCE_AREA)
+    assert separability_ceiling(features, truth) == 1.0
+    shuffled = np.random.default_rng(0).permutation(truth)  # the control: a labelling the features do not carry
+    assert abs(separability_ceiling(features, shuffled)) < 0.1
+    assert separability_ceiling(features, truth, neighbours=1) == 1.0
+
+
+def test_separability_ceiling_cannot_divide_one_glyph_given_two_labels():
+    rng = np.random.default_rng(4)
+    elements = placed(O, 0.8, 60, rng)
+    labels = np.repeat(["a", "b"], 30)
+    assert separability_ceiling(element_features(elements, REFERENCE_AREA), labels) < 0.2
+
+
+@pytest.mark.parametrize("labels, options, match", [
+    (np.zeros(89), {}, "labels must be 1-D with one label per element"),
+    (np.zeros((90, 1)), {}, "labels must be 1-D"),
+    (np.zeros(90), {"neighbours": 0}, r"neighbours must be an integer in \[1, 89\]"),
+    (np.zeros(90), {"neighbours": 90}, "neighbours must be"),
+    (np.zeros(90), {"bins": 0}, "bins must be an integer >= 1"),
+    (np.zeros(90), {"neighbours": 2.5}, "neighbours must be"),
+])
+def test_separability_ceiling_bad_input(labels, options, match):
+    features = element_features(three_kinds()[0], REFERENCE_AREA)
+    with pytest.raises(ValueError, match=match):
+        separability_ceiling(features, labels, **options)
 
 
 def test_ari_identical_partitions_up_to_renaming():

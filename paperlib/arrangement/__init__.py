@@ -29,6 +29,7 @@ from .categorize import (
     adjusted_rand_index,
     categorize,
     recursive_feature_values,
+    separability_ceiling,
     unwrapped_orientation,
 )
 from .features import (
@@ -57,6 +58,6 @@ __all__ = [
     "DEFAULT_BINS", "DistanceCutoffs", "METHODS", "RECURSIVE_FEATURES", "Split", "recursive_feature_values", "ELONGATION_CAP", "ExactFitError", "FeatureHistogram", "MIN_FIT_SIZE",
     "MIN_SPLIT_SIZE", "ORIENTATION_PERIOD", "RobustPCA", "adjusted_rand_index", "box_distance_matrix", "categorize", "crossing_points",
     "element_features", "element_positions", "extremity_points", "fit", "minimum_box_areas", "normalized_area", "normalized_count",
-    "normalized_elongation", "normalized_orientation", "render", "robust_pca", "subset_size", "synthesize",
+    "normalized_elongation", "normalized_orientation", "render", "robust_pca", "separability_ceiling", "subset_size", "synthesize",
     "unwrapped_orientation",
 ]

@@ -211,6 +211,9 @@ the same, bit for bit, for the same seed.
 
 The adjusted Rand index (Hubert and Arabie 1985), which measures agreement with ground-truth
 categories, is written here with NumPy to avoid a scikit-learn dependency for one formula.
+:func:`separability_ceiling` is its control: the index a classifier that knows the types reaches
+on the same features (leave-one-out nearest neighbours in resolution units), which tells a miss
+of the features (types that overlap at their resolution) from a miss of the method.
 
 References
 ----------
@@ -236,6 +239,7 @@ from dataclasses import dataclass, fields, replace
 import diptest
 import numpy as np
 import pandas as pd
+from scipy.spatial import cKDTree
 from scipy.stats import mannwhitneyu
 
 from paperlib.acontrario import (
@@ -248,7 +252,9 @@ from paperlib.acontrario import (
     outlier_intervals,
     unimodal_segments,
 )
-from paperlib._checks import as_generator, data_frame, finite_array, instance_of, positive_number
+from paperlib._checks import (
+    as_generator, data_frame, finite_array, instance_of, integer_at_least, integer_in_range, positive_number,
+)
 from paperlib.geometry import as_elements
 
 from .features import COUNT_SCALE, TOPOLOGY_READINGS, element_features
@@ -271,6 +277,7 @@ __all__ = [
     "adjusted_rand_index",
     "categorize",
     "recursive_feature_values",
+    "separability_ceiling",
     "unwrapped_orientation",
 ]
 
@@ -1397,6 +1404,66 @@ def _checked_min_size(size) -> int:
 
 
 # --------------------------------------------------------------------------- agreement
+
+
+def separability_ceiling(features: pd.DataFrame, labels, *, bins: int = DEFAULT_BINS, neighbours: int = 5) -> float:
+    """How well the true types can be told apart on the features the recursive method cuts on.
+
+    A control for :func:`categorize`: a classifier that *knows* the types labels each element by
+    a vote of its ``neighbours`` nearest other elements (leave-one-out k-nearest neighbours; a tie
+    goes to the nearest), in the space of :data:`JOINT_FEATURES` measured in units of the
+    resolution a joint split reads them at (one count; one histogram bin of area or elongation;
+    :data:`INK_LENGTH_RESOLUTION`). The adjusted Rand index of those labels against the types is
+    a ceiling in practice: where it is below 0.9, the types overlap at the features' resolution
+    and no categorization on them can divide them; where it is high and :func:`categorize` is
+    not, the information is there and the unsupervised rules (which must also leave a type the
+    hand varies whole) are what fails. Orientation is left out, as in joint splits.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        Output of :func:`~paperlib.arrangement.element_features` (e.g. ``Categorization.features``).
+    labels : array_like, shape (n,)
+        The true type of each element.
+    bins : int, optional
+        Histogram bins of the recursive method (default :data:`DEFAULT_BINS`): sets the area and
+        elongation resolutions.
+    neighbours : int, optional
+        Neighbours voting for each element (default 5), in ``[1, n - 1]``.
+
+    Returns
+    -------
+    float
+        Adjusted Rand index of the leave-one-out labels against ``labels``.
+
+    Raises
+    ------
+    ValueError
+        If ``features`` lacks a column or holds fewer than 2 elements, ``labels`` is not 1-D with
+        one label per element, or ``bins`` or ``neighbours`` is not an integer in range.
+    TypeError
+        If ``features`` is not a DataFrame.
+    """
+    values = recursive_feature_values(features)
+    truth = np.asarray(labels)
+    if truth.ndim != 1 or truth.size != len(features):
+        raise ValueError(f"labels must be 1-D with one label per element ({len(features)}), got shape {truth.shape}")
+    if truth.size < 2:
+        raise ValueError(f"features must hold at least 2 elements, got {truth.size}")
+    bins = integer_at_least(bins, "bins", 1)
+    neighbours = integer_in_range(neighbours, "neighbours", 1, truth.size - 1)
+    resolution = _joint_resolutions({"bins": bins})
+    points = np.column_stack([values[feature] / resolution[feature] for feature in JOINT_FEATURES])
+    _, nearest = cKDTree(points).query(points, k=min(neighbours + 1, truth.size))
+    voted = np.array([_vote(truth, [j for j in row if j != i][:neighbours]) for i, row in enumerate(nearest)])
+    return adjusted_rand_index(voted, truth)
+
+
+def _vote(truth: np.ndarray, neighbours: list):
+    """The most frequent label among ``neighbours`` (nearest first); a tie goes to the nearest's."""
+    kinds, counts = np.unique(truth[neighbours], return_counts=True)
+    most = kinds[counts == counts.max()]
+    return most[0] if most.size == 1 else truth[neighbours[0]]
 
 
 def adjusted_rand_index(labels_a, labels_b) -> float:
