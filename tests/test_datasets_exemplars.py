@@ -312,3 +312,13 @@ def test_other_windows():
 def test_bad_parameters_raise_clear_errors(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+@pytest.mark.parametrize("call", [
+    lambda: amacrine_exemplar(font=np.array([1.0, -1.0, 1.0])),  # found by a random fuzz run: numpy's ambiguous truth value
+    lambda: regularity_exemplar(0.3, font=3, rng=0),
+    lambda: hatching_exemplar(font=None, rng=0),
+])
+def test_a_font_that_is_not_a_name_is_refused_naming_it(call):
+    with pytest.raises(TypeError, match="font must be a str"):
+        call()

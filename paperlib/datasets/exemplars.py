@@ -86,7 +86,7 @@ from pathlib import Path
 
 import numpy as np
 
-from paperlib._checks import as_generator, budget, check_budget, file_path, positive_number
+from paperlib._checks import as_generator, budget, check_budget, file_path, instance_of, positive_number
 from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import MultiStraussHard, PointPattern, Window, rmh
 from paperlib.pointprocess.simulate import MAX_STEPS
@@ -234,7 +234,7 @@ OUTLINE_FONT = "dejavu_outlines"
 
 def _font_glyph(char: str, font: str) -> Element:
     """The glyph of one Hershey font, or the DejaVu outline of a character for :data:`OUTLINE_FONT`."""
-    if font != OUTLINE_FONT:
+    if instance_of(font, str, "font") != OUTLINE_FONT:
         return hershey_glyph(char, font)
     ring = character_outline(char)
     return Element((Stroke(np.vstack([ring, ring[:1]]), DEFAULT_STROKE_WIDTH),), name=f"{font}:{char}")
