@@ -154,3 +154,10 @@ def test_hard_core_pair_and_dark_min_are_checked():
                           ({"dark_min": 1.0}, "dark_min")]:
         with pytest.raises(ValueError, match=match):
             stipple_tone_texture(0.3, 32, rng=0, **kwargs)
+
+
+def test_a_tone_too_small_for_its_marks_is_drawn_as_no_ink_expected():
+    """A random fuzz run: tone 1e-308 with marks of radius 2.5e16 px underflowed the expected mark count
+    to 0 and divided by it."""
+    texture = stipple_tone_texture(1e-308, size=63, mark_radius=2.5e16, rng=1)
+    assert texture.shape == (63, 63)

@@ -401,3 +401,23 @@ def test_csr_L_sd_checks_its_counts():
     _raises(ValueError, r"^area must be a positive finite number", csr_L_sd, -1.0, 1, 1, False)
     _raises(TypeError, r"^same_type must be True or False", csr_L_sd, 1.0, 1, 1, [])
     assert csr_L_sd(2.0, 1, 1, True) == pytest.approx((1 / np.pi) ** 0.5)  # sqrt(|W| / (2 pi n^2))
+
+
+def test_choices_given_an_array_are_refused_naming_the_parameter():
+    """A random fuzz run passed empty arrays as choices: ``array in (...)`` raised NumPy's ambiguous-truth error."""
+    from paperlib.datasets import two_category_exemplar
+    from paperlib.mlts import ifs_fractal
+    from paperlib.pointprocess import PointPattern, Window, pcf
+
+    empty = np.array([])
+    _raises(ValueError, r"^mode must be one of", ifs_fractal, (32, 32), mode=empty, n_points=100, rng=0)
+    _raises(ValueError, r"^between must be one of", two_category_exemplar, between=empty, rng=0)
+    pattern = PointPattern(np.random.default_rng(0).random((20, 2)), Window.rectangle())
+    _raises(ValueError, r"^divisor must be one of", pcf, pattern, divisor=np.array(["r", "d"]))
+
+
+def test_a_quadrature_grid_of_no_side_is_refused_naming_quadrature():
+    from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
+
+    pattern = PointPattern(np.random.default_rng(1).random((30, 2)), Window.rectangle())
+    _raises(ValueError, r"^quadrature \(an nd", fit_strauss_hardcore, pattern, r=0.1, quadrature=0)

@@ -232,6 +232,21 @@ def test_seeds_2d_fill_the_region_evenly():
         seeds_2d((0, 0, 0, 1), 10)
 
 
+def test_seed_counts_beyond_the_budget_are_refused_before_allocating():
+    """A random fuzz run asked seeds_1d for 1e12 seeds and got a MemoryError (7 TiB)."""
+    path = np.array([(0.0, 0.0), (1.0, 0.0)])
+    with pytest.raises(ValueError, match="max_seeds"):
+        seeds_1d(path, 10**12)
+    with pytest.raises(ValueError, match="max_seeds"):
+        seeds_2d((0, 1, 0, 1), 11, max_seeds=10)
+    assert len(seeds_1d(path, 11, max_seeds=11).arc) == 11
+    analysis = analyze(hatching(20), 0.4, dimension=1)
+    with pytest.raises(ValueError, match="max_seeds"):
+        synthesize(analysis, [(0, 0), (100, 0)], n=10**12)
+    with pytest.raises(ValueError, match="max_seeds"):
+        synthesize(analysis, [(0, 0), (100, 0)], max_seeds=5)
+
+
 def test_ring_neighbourhoods_on_a_chain():
     pointers, neighbours = ring_neighbourhoods(6, [(0, 1), (1, 2), (2, 3), (3, 4), (4, 5)], 2)
     assert neighbours[pointers[2]:pointers[3]].tolist() == [0, 1, 3, 4]

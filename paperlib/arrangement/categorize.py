@@ -253,7 +253,8 @@ from paperlib.acontrario import (
     unimodal_segments,
 )
 from paperlib._checks import (
-    as_generator, data_frame, finite_array, instance_of, integer_at_least, integer_in_range, positive_number,
+    as_generator, check_choice, data_frame, finite_array, instance_of, integer_at_least, integer_in_range,
+    positive_number,
 )
 from paperlib.geometry import as_elements
 
@@ -686,8 +687,7 @@ def _check_given_features(features, n_elements: int, reference_area, topology: s
                          f"topology_read_on), got attrs {sorted(features.attrs)}")
     if not np.isclose(given_area, positive_number(reference_area, "reference_area"), rtol=1e-12, atol=0.0):
         raise ValueError(f"features were measured for reference_area={given_area!r}, not {reference_area!r}")
-    if topology not in TOPOLOGY_READINGS:
-        raise ValueError(f"topology must be one of {TOPOLOGY_READINGS}, got {topology!r}")
+    check_choice(topology, TOPOLOGY_READINGS, "topology")
     if topology not in ("auto", read_on):
         raise ValueError(f"topology={topology!r} differs from the reading the features record ({read_on!r})")
 

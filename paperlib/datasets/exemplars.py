@@ -86,7 +86,7 @@ from pathlib import Path
 
 import numpy as np
 
-from paperlib._checks import as_generator, budget, check_budget, file_path, instance_of, positive_number
+from paperlib._checks import as_generator, budget, check_budget, check_choice, file_path, instance_of, positive_number
 from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import MultiStraussHard, PointPattern, Window, rmh
 from paperlib.pointprocess.simulate import MAX_STEPS
@@ -406,8 +406,7 @@ def two_category_exemplar(
     for i in range(2):
         if hc[i] > r[i]:
             raise ValueError(f"hc[{i}] = {hc[i]} exceeds r[{i}] = {r[i]}: a hard core must not exceed its radius")
-    if between not in ("repulsive", "independent"):
-        raise ValueError(f"between must be 'repulsive' or 'independent', got {between!r}")
+    check_choice(between, ("repulsive", "independent"), "between")
     between_gamma = _number(between_gamma, "between_gamma", 0.0, 1.0)
     between_r = positive_number(between_r, "between_r")
     between_hc = positive_number(between_hc, "between_hc", allow_zero=True)

@@ -267,6 +267,8 @@ def _min_distance(ink_tone, shape, mark_radius, regime, hard_core=HARD_CORE):
         return 2.0 * mark_radius
     mark_area = math.pi * mark_radius**2
     expected_marks = -shape[0] * shape[1] * math.log1p(-min(ink_tone, 0.999)) / mark_area
+    if expected_marks <= 0.0:  # a tone so small for marks so large that the count underflows: as for no ink
+        return 2.0 * mark_radius
     spacing = math.sqrt(shape[0] * shape[1] / expected_marks)
     floor = 0.0 if regime == "merged" else 2.0 * mark_radius
     if np.ndim(hard_core) == 1:

@@ -48,7 +48,7 @@ import numba
 import numpy as np
 from scipy.spatial import cKDTree
 
-from paperlib._checks import (as_generator, budget, check_budget, check_flag, float_array, point_array,
+from paperlib._checks import (as_generator, budget, check_budget, check_choice, check_flag, float_array, point_array,
                               positive_number)
 
 __all__ = [
@@ -845,8 +845,7 @@ def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0
     """
     height, width = _check_shape(shape)
     check_budget(height * width, budget(max_pixels, "max_pixels"), "max_pixels", "image pixels")
-    if mode not in ("binary", "density"):
-        raise ValueError(f"mode must be 'binary' or 'density', got {mode!r}")
+    check_choice(mode, ("binary", "density"), "mode")
     margin = positive_number(margin, "margin", allow_zero=True)
     if 2.0 * margin >= min(height, width):
         raise ValueError(f"margin must be smaller than half the image's smaller side, got {margin}")

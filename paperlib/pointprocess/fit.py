@@ -572,6 +572,8 @@ def _resolve_quadrature(quadrature, pattern: PointPattern, interaction: MultiStr
             raise ValueError("the quadrature scheme was not built for this pattern (its data points differ)")
         return quadrature
     if isinstance(quadrature, (int, np.integer)) and not isinstance(quadrature, bool):
+        if quadrature < 1:
+            raise ValueError(f"quadrature (an nd, the dummy grid's side) must be >= 1, got {quadrature!r}")
         return quadscheme(pattern, nd=int(quadrature))
     raise ValueError(f"quadrature must be None, 'spatstat', an nd (int) or a QuadratureScheme, got {quadrature!r}")
 

@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from paperlib._checks import positive_number
+from paperlib._checks import check_choice, positive_number
 
 from . import _pairs
 from .pattern import PointPattern
@@ -388,8 +388,7 @@ def pcf(pattern: PointPattern, r=None, *, correction=("translate", "isotropic"),
     pattern = _checked_pattern(pattern)
     corrections = _parsed_corrections(correction, PCF_CORRECTIONS)
     _require_points(pattern.n, 2, "pcf needs at least 2 points")
-    if divisor not in ("r", "d"):
-        raise ValueError(f"divisor must be 'r' or 'd', got {divisor!r}")
+    check_choice(divisor, ("r", "d"), "divisor")
     stoyan = positive_number(stoyan, "stoyan")
     r = _r_grid(pattern.window, pattern.intensity, r, rmax)
     if bw is None:

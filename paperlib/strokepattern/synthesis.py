@@ -68,7 +68,7 @@ from .analysis import (
 )
 from .measures import Thresholds, measure_tables
 
-__all__ = ["Seeds", "Synthesis", "as_region", "growth_order", "pairing_gate", "reference_centre", "ring_neighbourhoods",
+__all__ = ["MAX_SEEDS", "Seeds", "Synthesis", "as_region", "growth_order", "pairing_gate", "reference_centre", "ring_neighbourhoods",
            "seeds_1d", "seeds_2d", "synthesize", "target_count"]
 
 #: Lloyd iterations by default. From a stratified random start in 1D the spacing then varies by about 1 %
@@ -147,7 +147,13 @@ def _points_on_path(path: np.ndarray, arc: np.ndarray) -> np.ndarray:
     return shapely.get_coordinates(shapely.line_interpolate_point(shapely.linestrings(path), arc))
 
 
-def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> Seeds:
+#: Default budget of :func:`seeds_1d`, :func:`seeds_2d` and :func:`synthesize` (``max_seeds``): the most
+#: seeds, checked before anything is allocated. The paper's figures place hundreds; a 2D Lloyd relaxation
+#: of 1e5 seeds already takes minutes.
+MAX_SEEDS = 100_000
+
+
+def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS) -> Seeds:
     """N seeds along a polyline by Lloyd's method in arc length (section 3.2), chained in path order.
 
     The random start draws one uniform position in each of n equal arc-length strata: a random start without
@@ -163,6 +169,8 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> S
         Lloyd iterations.
     rng : None, int or numpy.random.Generator, optional
         Source of randomness for the start.
+    max_seeds : int, optional
+        Budget: the most seeds (default :data:`MAX_SEEDS`); a larger ``n`` raises ValueError.
 
     Returns
     -------
@@ -170,7 +178,7 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> S
         Positions on the path, path tangents as frames, the chain edges and the arc lengths.
     """
     path, length = _extent(path, 1)
-    n = _count(n)
+    n = _seed_count(n, max_seeds)
     rng = as_generator(rng)
     start = (np.arange(n) + rng.random(n)) * (length / n)
     arc = _lloyd_1d(start, length, _iterations(iterations))
@@ -190,7 +198,7 @@ def _uniform_in(region, n: int, rng) -> np.ndarray:
     return kept[:n]
 
 
-def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) -> Seeds:
+def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS) -> Seeds:
     """N seeds in a region by Lloyd's method (Voronoi cells clipped to the region, section 3.2).
 
     Neighbours are the unskewed Delaunay edges (no triangle angle above 2 pi / 3), as in the analysis.
@@ -205,6 +213,8 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) ->
         Lloyd iterations.
     rng : None, int or numpy.random.Generator, optional
         Source of randomness for the uniform start.
+    max_seeds : int, optional
+        Budget: the most seeds (default :data:`MAX_SEEDS`); a larger ``n`` raises ValueError.
 
     Returns
     -------
@@ -212,7 +222,7 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None) ->
         Positions in the region, zero frames, the unskewed Delaunay edges and NaN arc lengths.
     """
     region, _ = _extent(region, 2)
-    n = _count(n)
+    n = _seed_count(n, max_seeds)
     if n < 3:
         raise ValueError(f"a 2D synthesis needs at least 3 seeds, got {n}: enlarge the region")
     rng = as_generator(rng)
@@ -224,6 +234,13 @@ def _count(n) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise ValueError(f"n (the number of seeds) must be an integer >= 1, got {n!r:.80}")
     return int(n)
+
+
+def _seed_count(n, max_seeds) -> int:
+    """The number of seeds, checked against the budget ``max_seeds`` before anything is drawn."""
+    n = _count(n)
+    check_budget(n, budget(max_seeds, "max_seeds"), "max_seeds", "seeds")
+    return n
 
 
 def _iterations(iterations) -> int:
@@ -485,7 +502,7 @@ def _option(value, allowed, name: str):
 def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | None = None,
                thresholds: Thresholds | None = None, choice: str = "close", tolerance: float = CLOSE_TOLERANCE,
                matching: str = "coverage", start: str = "centre", iterations: int = LLOYD_ITERATIONS,
-               rng=None) -> Synthesis:
+               rng=None, max_seeds: int = MAX_SEEDS) -> Synthesis:
     """Synthesise a pattern like the analysed reference along a path (1D) or in a region (2D) (Algorithm 1).
 
     Parameters
@@ -525,6 +542,8 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
         Lloyd iterations for the seeds.
     rng : None, int or numpy.random.Generator
         Drives the seeds and the choices; same seed, same pattern.
+    max_seeds : int, optional
+        Budget: the most elements (default :data:`MAX_SEEDS`), checked before the seeds are placed.
 
     Returns
     -------
@@ -533,8 +552,8 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     Raises
     ------
     ValueError
-        A target path of zero length, a region of zero area, a 2D target too small for 3 seeds, rings < 1,
-        an unknown choice, matching or start, a negative tolerance.
+        A target path of zero length, a region of zero area, a 2D target too small for 3 seeds, more elements
+        than ``max_seeds``, rings < 1, an unknown choice, matching or start, a negative tolerance.
 
     References
     ----------
@@ -556,7 +575,7 @@ def synthesize(analysis: PatternAnalysis, target, *, rings: int = 2, n: int | No
     rng = as_generator(rng)
     seed_rng, choice_rng = rng.spawn(2)
     make_seeds = seeds_1d if dimension == 1 else seeds_2d
-    seeds = make_seeds(shape, count, iterations=iterations, rng=seed_rng)
+    seeds = make_seeds(shape, count, iterations=iterations, rng=seed_rng, max_seeds=max_seeds)
     start_element = _start(seeds, shape, dimension)
     order = growth_order(seeds.positions, seeds.edges, start_element)
     tables = measure_tables(analysis.boxes.half_lengths, analysis.boxes.angles - analysis.frames, analysis.colors)

@@ -27,7 +27,7 @@ import dataclasses
 
 import numpy as np
 
-from paperlib._checks import as_generator
+from paperlib._checks import as_generator, check_choice
 
 from ..geometry import Element, Stroke
 from .analysis import PatternAnalysis, neighbour_lists, neighbourhood_areas
@@ -152,8 +152,7 @@ def vary_positions(synthesis: Synthesis, analysis: PatternAnalysis, *, k: int | 
     Barla et al. 2006, sections 2.3 (S_ref) and 3.3.
     """
     _check_pair(synthesis, analysis)
-    if scaling not in ("length", "printed"):
-        raise ValueError(f"scaling must be 'length' or 'printed', got {scaling!r}")
+    check_choice(scaling, ("length", "printed"), "scaling")
     d = synthesis.dimension
     k = MIN_NEIGHBOURS[d] if k is None else int(k)
     if k < 1:
