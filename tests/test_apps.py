@@ -60,6 +60,8 @@ def test_voila_serves_the_app_on_localhost_with_the_offline_template(tmp_path):
     assert (template_dir / "index.html.j2").samefile(OUR_TEMPLATE)
     with pytest.raises(ValueError, match="file_root must be an existing folder"):
         apps.voila_environment(tmp_path / "missing")
+    with pytest.raises(ValueError, match="file_root names the home of an unknown user"):  # found by a fuzz run
+        apps.voila_environment("~no-such-user-of-this-machine/files")
 
 
 def test_the_offline_template_drops_every_link_voila_fetches_from_outside():

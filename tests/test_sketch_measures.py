@@ -65,3 +65,19 @@ def test_box_counting_dimension_of_smooth_and_fractal_curves():
         box_counting_dimension(circle(), closed=True, fractions=[0.5])
     with pytest.raises(ValueError, match="single point"):
         box_counting_dimension(np.zeros((5, 2)), closed=True)
+
+
+def test_densifying_beyond_the_budget_is_refused_before_allocating():
+    """A random fuzz run: curve_hausdorff's default resolution (a hundredth of the smaller curve's mean
+    segment) on a curve 1e-10 wide against a unit one asked for 7e11 points (5 TiB)."""
+    tiny = np.array([[0.0, 0.0], [1e-10, 0.0], [1e-10, 1e-10]])
+    unit = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    with pytest.raises(ValueError, match="max_samples"):
+        curve_hausdorff(tiny, unit, closed=False)
+    with pytest.raises(ValueError, match="max_samples"):
+        densify(unit, closed=False, spacing=1e-300)  # 2e300 points: counted as floats, no int64 overflow
+    with pytest.raises(ValueError, match="max_samples"):
+        box_counting_dimension(unit, closed=False, fractions=(1e-9, 0.5))
+    assert len(densify(unit, closed=False, spacing=0.5, max_samples=5)) == 5
+    with pytest.raises(ValueError, match="max_samples"):
+        densify(unit, closed=False, spacing=0.5, max_samples=4)

@@ -23,10 +23,15 @@ from numbers import Real
 import numpy as np
 from scipy.stats import ks_2samp
 
-from .._checks import check_flag, float_array
+from .._checks import budget, check_budget, check_flag, float_array
 from ..geometry import as_points, hausdorff, turning_angles
 
-__all__ = ["box_counting_dimension", "curve_hausdorff", "densify", "turning_ks", "turning_per_sample"]
+__all__ = ["MAX_DENSE_SAMPLES", "box_counting_dimension", "curve_hausdorff", "densify", "turning_ks",
+           "turning_per_sample"]
+
+#: Default budget (``max_samples``) of :func:`densify` and of the measures that densify: the most points
+#: a densified curve may hold (1e7 points, 160 MB), checked before anything is allocated.
+MAX_DENSE_SAMPLES = 10_000_000
 
 # Box sizes as fractions of the curve's larger side: coarse enough to see several boxes, fine enough to stay
 # above the sample spacing of a 256-sample coastline (about 1/40 of its side).
@@ -41,7 +46,7 @@ def _polyline(points, closed: bool, name: str) -> np.ndarray:
     return np.vstack([points, points[:1]]) if closed else points
 
 
-def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
+def densify(points, *, closed: bool, spacing: float, max_samples: int = MAX_DENSE_SAMPLES) -> np.ndarray:
     """The polyline's vertices plus points every ``spacing`` (at most) along each of its segments.
 
     Parameters
@@ -52,6 +57,9 @@ def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
         Whether the last vertex joins the first.
     spacing : float
         Largest distance between consecutive output points (> 0).
+    max_samples : int, optional
+        Budget: the most output points (default :data:`MAX_DENSE_SAMPLES`); a spacing that needs more
+        raises ValueError before anything is allocated.
 
     Returns
     -------
@@ -64,14 +72,17 @@ def densify(points, *, closed: bool, spacing: float) -> np.ndarray:
         raise ValueError(f"spacing must be positive, got {spacing!r:.60}")
     polyline = _polyline(points, closed, "points")
     starts, moves = polyline[:-1], np.diff(polyline, axis=0)
-    pieces = np.maximum(np.ceil(np.hypot(*moves.T) / spacing).astype(np.int64), 1)
+    pieces = np.maximum(np.ceil(np.hypot(*moves.T) / spacing), 1.0)  # float: no int64 overflow before the check
+    check_budget(float(pieces.sum()) + 1, budget(max_samples, "max_samples"), "max_samples", "densified points")
+    pieces = pieces.astype(np.int64)
     segment = np.repeat(np.arange(len(starts)), pieces)
     fraction = (np.arange(pieces.sum()) - np.repeat(np.cumsum(pieces) - pieces, pieces)) / np.repeat(pieces, pieces)
     dense = starts[segment] + fraction[:, None] * moves[segment]
     return dense if closed else np.vstack([dense, polyline[-1:]])
 
 
-def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None) -> float:
+def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None,
+                    max_samples: int = MAX_DENSE_SAMPLES) -> float:
     """Hausdorff distance between two curves (not only their vertices).
 
     Both polylines are densified to ``resolution`` (default: a hundredth of the smaller of their two mean
@@ -85,6 +96,9 @@ def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None) -> f
         Whether both curves are closed rings.
     resolution : float, optional
         Spacing the curves are densified to, in their units (> 0).
+    max_samples : int, optional
+        Budget of each densified curve (see :func:`densify`): two curves of very different sizes at the
+        default resolution can need more.
 
     Returns
     -------
@@ -101,8 +115,8 @@ def curve_hausdorff(a, b, *, closed: bool, resolution: float | None = None) -> f
     elif not isinstance(resolution, Real) or not resolution > 0:
         raise ValueError(f"resolution must be a positive number or None, got {resolution!r:.60}")
     kept = slice(None, -1) if closed else slice(None)
-    return hausdorff(densify(a[kept], closed=closed, spacing=resolution),
-                     densify(b[kept], closed=closed, spacing=resolution))
+    return hausdorff(densify(a[kept], closed=closed, spacing=resolution, max_samples=max_samples),
+                     densify(b[kept], closed=closed, spacing=resolution, max_samples=max_samples))
 
 
 def turning_per_sample(points, *, closed: bool) -> np.ndarray:
@@ -152,7 +166,8 @@ def turning_ks(a, b) -> float:
     return float(ks_2samp(a, b).statistic)
 
 
-def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS) -> float:
+def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS,
+                           max_samples: int = MAX_DENSE_SAMPLES) -> float:
     """Box-counting dimension of a curve: the slope of log N(eps) against log(1 / eps).
 
     ``N(eps)`` counts the grid cells of side ``eps`` the curve passes through, ``eps`` running over
@@ -169,6 +184,8 @@ def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS) -> 
         Whether the last vertex joins the first.
     fractions : sequence of float, default (1/4, 1/8, 1/16, 1/32)
         Box sides as fractions of the curve's larger bounding-box side, at least two, each in (0, 1).
+    max_samples : int, optional
+        Budget of the densified curve (see :func:`densify`): very small boxes need more points.
 
     Returns
     -------
@@ -182,7 +199,8 @@ def box_counting_dimension(points, *, closed: bool, fractions=BOX_FRACTIONS) -> 
     side = float(np.ptp(polyline, axis=0).max())
     if side == 0:
         raise ValueError("points: the curve is a single point (all its points coincide)")
-    dense = densify(polyline[:-1] if closed else polyline, closed=closed, spacing=fractions.min() * side / 8)
+    dense = densify(polyline[:-1] if closed else polyline, closed=closed, spacing=fractions.min() * side / 8,
+                    max_samples=max_samples)
     origin = dense.min(axis=0)
     counts = [len(np.unique(np.floor((dense - origin) / (f * side)).astype(np.int64), axis=0)) for f in fractions]
     return float(np.polyfit(np.log(1 / fractions), np.log(counts), 1)[0])

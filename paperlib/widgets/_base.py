@@ -58,7 +58,10 @@ def check_file_root(file_root) -> Path | None:
         raise TypeError(f"file_root must be None, a str or a Path, got {type(file_root).__name__}")
     if not str(file_root).strip() or "\0" in str(file_root):
         raise ValueError(f"file_root must name a folder, got {str(file_root)!r:.80}")
-    folder = Path(file_root).expanduser().resolve()
+    try:
+        folder = Path(file_root).expanduser().resolve()
+    except RuntimeError:  # '~name' for a user this machine does not know
+        raise ValueError(f"file_root names the home of an unknown user, got {str(file_root)!r:.80}") from None
     if not folder.is_dir():
         raise ValueError(f"file_root must be an existing folder, got {str(file_root)!r}")
     return folder
