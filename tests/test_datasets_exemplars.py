@@ -307,6 +307,7 @@ def test_other_windows():
         (lambda: near_identical_exemplar(proportions=(1.0,)), "proportions"),
         (lambda: near_identical_exemplar(chars="o"), "at least 2"),
         (lambda: amacrine_exemplar(size=-0.01), "size"),
+        (lambda: lattice_exemplar(size=1e308), "size must keep the glyphs' coordinates finite"),  # a fuzz run
     ],
 )
 def test_bad_parameters_raise_clear_errors(call, match):

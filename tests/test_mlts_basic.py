@@ -66,6 +66,20 @@ def test_mean_area_closed_form_matches_quadrature(alpha):
     assert dead_leaves_mean_area(r_min, r_max, alpha) == pytest.approx(math.pi * second_moment, rel=1e-9)
 
 
+@pytest.mark.parametrize("r_min, r_max, alpha, expected", [
+    (1e-10, 1e10, 40.0, math.pi * 39 / 37 * 1e-20),  # both moments dominated by r_min: E[r^2] = (39/37) r_min^2
+    (1e-100, 1.0, 3.5, math.pi * 5e-200),  # E[r^2] = 5 r_min^2, computed directly
+    (1e-300, 1.0, 4.0, 0.0),  # r_min^-3 = 1e900 overflows; E[r^2] = 3 r_min^2 = 3e-600 underflows to 0
+    (1.0, 1e150, 1.5, math.pi / 3 * 1e225),  # numerator from r_max, normaliser from r_min
+])
+def test_mean_area_at_extreme_bounds_goes_through_logarithms(r_min, r_max, alpha, expected):
+    """A random fuzz run: r_min = 2e-313 with alpha = 77 overflowed r_min**(1 - alpha)."""
+    assert dead_leaves_mean_area(r_min, r_max, alpha) == pytest.approx(expected, rel=1e-9, abs=0.0)
+    assert dead_leaves_mean_area(2.2250738585e-313, 1.0, 76.9) >= 0.0  # underflows to 0, no error
+    with pytest.raises(ValueError, match="exceeds the largest float"):
+        dead_leaves_mean_area(1e-300, 1e300, 0.1)
+
+
 @pytest.mark.parametrize("alpha", [3.0, 1.0, 2.2])
 def test_dead_leaves_radii_follow_power_law_and_centres_fill_enlarged_window(alpha):
     _, (discs, _) = dead_leaves((32, 48), n_leaves=5000, r_min=1.5, r_max=12.0, alpha=alpha, rng=11,

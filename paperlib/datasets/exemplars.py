@@ -248,6 +248,9 @@ def _glyph(char: str, font: str, size: float) -> _Glyph:
         raise ValueError(f"Hershey glyph {char!r} of font {font!r} is a single point and cannot be scaled")
     scale = size / extent
     centre = np.array([(xmin + xmax) / 2, (ymin + ymax) / 2])
+    largest = max(float(np.abs(glyph.points - centre).max()), max(stroke.width for stroke in glyph.strokes))
+    if not (math.isfinite(scale * largest) and math.isfinite(scale * scale)):  # the pen scales by sqrt(det)
+        raise ValueError(f"size must keep the glyphs' coordinates finite, got {size!r}")
     element = glyph.transformed(scale * np.eye(2), -scale * centre)
     points = element.points
     half = np.array([(xmax - xmin) / 2, (ymax - ymin) / 2]) * scale

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import math
 import operator
+import sys
 import warnings
 
 import numba
@@ -184,6 +185,16 @@ def _power_moment(r_min: float, r_max: float, exponent: float) -> float:
     return (r_max**power - r_min**power) / power
 
 
+def _log_power_moment(r_min: float, r_max: float, exponent: float) -> float:
+    """log of :func:`_power_moment`, computed from the logarithms of the bounds: no power overflows."""
+    log_min, log_max = math.log(r_min), math.log(r_max)
+    power = exponent + 1.0
+    if math.isclose(power, 0.0, rel_tol=0.0, abs_tol=1e-12):
+        return math.log(log_max - log_min)
+    high, low = power * log_max, power * log_min
+    return max(high, low) + math.log1p(-math.exp(-abs(high - low))) - math.log(abs(power))
+
+
 def _power_law_radii(u: np.ndarray, r_min: float, r_max: float, alpha: float) -> np.ndarray:
     """Inverse CDF of the density proportional to r**(-alpha) on [r_min, r_max], at ``u`` in [0, 1)."""
     if math.isclose(alpha, 1.0, rel_tol=0.0, abs_tol=1e-12):
@@ -220,7 +231,17 @@ def dead_leaves_mean_area(r_min, r_max, alpha=3.0) -> float:
     Alvarez et al. 2015, Fig. 5; Lee, Mumford, Huang 2001 (ref. [27]), section 3.
     """
     r_min, r_max, alpha = _check_radii(r_min, r_max, alpha)
-    return math.pi * _power_moment(r_min, r_max, 2.0 - alpha) / _power_moment(r_min, r_max, -alpha)
+    try:
+        ratio = _power_moment(r_min, r_max, 2.0 - alpha) / _power_moment(r_min, r_max, -alpha)
+    except (OverflowError, ZeroDivisionError):
+        ratio = math.nan
+    if not 0.0 < ratio < math.inf:  # extreme bounds or exponent: a power over- or underflows, take logarithms
+        log_ratio = _log_power_moment(r_min, r_max, 2.0 - alpha) - _log_power_moment(r_min, r_max, -alpha)
+        if log_ratio > math.log(sys.float_info.max / math.pi):
+            raise ValueError(f"the mean leaf area of r_min={r_min}, r_max={r_max}, alpha={alpha} exceeds the "
+                             "largest float")
+        ratio = math.exp(log_ratio)
+    return math.pi * ratio
 
 
 def dead_leaves_window_area(shape, r_max) -> float:
