@@ -8,6 +8,7 @@ from paperlib.datasets import GlyphType, categorization_cases, drawn_glyph, draw
 from paperlib.datasets.drawn_glyphs import (
     HELD_OUT_2_CASES,
     HELD_OUT_9_CASES,
+    HELD_OUT_14_CASES,
     HELD_OUT_CASES,
     MAIN_CASES,
     OUTLINE_CASES,
@@ -89,6 +90,10 @@ def test_categorization_cases_families():
     assert list(ninth) == list(HELD_OUT_9_CASES)
     assert [len(exemplar.categories) for _, exemplar in ninth.values()] == [len(types) for _, types in
                                                                              HELD_OUT_9_CASES.values()]
+    fourteenth = categorization_cases("held_out_14", rng=0)  # fixed before free ends and bends were tried
+    assert list(fourteenth) == list(HELD_OUT_14_CASES)
+    assert [len(exemplar.categories) for _, exemplar in fourteenth.values()] == [len(types) for _, types in
+                                                                                  HELD_OUT_14_CASES.values()]
     outlines = categorization_cases("outlines", rng=0)  # another tool's font: DejaVu outlines
     assert list(outlines) == list(OUTLINE_CASES)
     assert all(len(element.strokes) == 1 for _, exemplar in outlines.values() for element in exemplar.elements)

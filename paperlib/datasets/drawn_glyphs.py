@@ -580,12 +580,27 @@ HELD_OUT_13_CASES = {
     "held13_control_times_y": ("one type, a serif glyph (control)", (("y", 0.05, 50),)),
     "held13_control_4": ("one type (control)", (("4", 0.06, 50),)),
 }
+#: Fourteenth held-out family, fixed after the thirteenth had been checked (types one count apart in every copy
+#: and nothing else a resolution apart) and before free ends and bends were tried as two counts; faces and
+#: glyphs no family had used: medium futural capitals (``futuram``), complex script digits, double-stroke
+#: lower-case letters (``rowmand``), complex Greek sizes, outlined pictograms, and controls.
+HELD_OUT_14_CASES = {
+    "held14_capitals_3": ("extremities", (("A", 0.06, 30), ("H", 0.06, 30), ("Z", 0.06, 30))),
+    "held14_digits_3": ("extremities and crossings", (("1", 0.06, 30), ("3", 0.06, 30), ("9", 0.06, 30))),
+    "held14_letters_3": ("extremities and elongation", (("c", 0.05, 30), ("s", 0.05, 30), ("z", 0.05, 30))),
+    "held14_outline_3": ("extremities and elongation", (("☺", 0.05, 25), ("♫", 0.05, 25), ("✔", 0.05, 25))),
+    "held14_area_2": ("area (sizes x2.3)", (("d", 0.035, 35), ("d", 0.08, 25, "D-big"))),
+    "held14_control_a_capital": ("one type (control)", (("A", 0.06, 50),)),
+    "held14_control_script_9": ("one type, a script digit (control)", (("9", 0.06, 50),)),
+    "held14_control_smiley": ("one type, a pictogram's outline (control)", (("☺", 0.05, 50),)),
+    "held14_control_z": ("one type, a double-stroke glyph (control)", (("z", 0.05, 50),)),
+}
 _FAMILIES = {"main": MAIN_CASES, "held_out": HELD_OUT_CASES, "held_out_2": HELD_OUT_2_CASES,
              "held_out_3": HELD_OUT_3_CASES, "held_out_4": HELD_OUT_4_CASES, "held_out_5": HELD_OUT_5_CASES,
              "held_out_6": HELD_OUT_6_CASES, "held_out_7": HELD_OUT_7_CASES, "held_out_8": HELD_OUT_8_CASES,
              "held_out_9": HELD_OUT_9_CASES, "held_out_10": HELD_OUT_10_CASES,
              "held_out_11": HELD_OUT_11_CASES, "held_out_12": HELD_OUT_12_CASES,
-             "held_out_13": HELD_OUT_13_CASES, "outlines": OUTLINE_CASES}
+             "held_out_13": HELD_OUT_13_CASES, "held_out_14": HELD_OUT_14_CASES, "outlines": OUTLINE_CASES}
 _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held_mixed_4": "scripts",
                    "held2_control_script_e": "scripts", "held3_area_2": "rowmans", "held3_area_3": "cursive",
                    "held3_topology_3": "rowmans", "held3_elongation_2": "rowmans", "held3_mixed_4": "rowmans",
@@ -612,7 +627,10 @@ _HELD_OUT_FONTS = {"held_topology_2": "scripts", "held_area_3": "scripts", "held
                    "held12_control_script_h": "scripts", "held12_control_greek_b": "greeks",
                    "held13_times_3": "timesr", "held13_digits_3": "rowmans", "held13_outline_3": OUTLINE_FONT,
                    "held13_area_2": "scriptc", "held13_control_note": OUTLINE_FONT, "held13_control_times_y": "timesr",
-                   "held13_control_4": "rowmans"}
+                   "held13_control_4": "rowmans", "held14_capitals_3": "futuram", "held14_digits_3": "scriptc",
+                   "held14_letters_3": "rowmand", "held14_outline_3": OUTLINE_FONT, "held14_area_2": "greekc",
+                   "held14_control_a_capital": "futuram", "held14_control_script_9": "scriptc",
+                   "held14_control_smiley": OUTLINE_FONT, "held14_control_z": "rowmand"}
 
 
 def _font_of(case: str) -> str:
@@ -626,7 +644,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
 
     Parameters
     ----------
-    family : {"main", "held_out", "held_out_2", ..., "held_out_13", "outlines"}
+    family : {"main", "held_out", "held_out_2", ..., "held_out_14", "outlines"}
         ``"main"``: :data:`MAIN_CASES` (futural glyphs: 2-5 types differing in area, topology or
         elongation, at several relative sizes and counts, and a one-type control).
         ``"held_out"``: :data:`HELD_OUT_CASES`, other glyphs and another font (``scripts``).
@@ -645,6 +663,8 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
         ``"held_out_12"``: :data:`HELD_OUT_12_CASES`, Greek and looped cursive letters, digits,
         weather pictograms.
         ``"held_out_13"``: :data:`HELD_OUT_13_CASES`, capitals, Times letters, digits, pictograms.
+        ``"held_out_14"``: :data:`HELD_OUT_14_CASES`, medium capitals, script digits, double-stroke
+        letters, pictograms.
         ``"outlines"``: :data:`OUTLINE_CASES`, outer outlines of DejaVu Sans dingbats and chess pieces.
     rng : None, int or numpy.random.Generator
         Seed; each case gets its own generator spawned from it, so a case does not change when
