@@ -416,6 +416,41 @@ def test_choices_given_an_array_are_refused_naming_the_parameter():
     _raises(ValueError, r"^divisor must be one of", pcf, pattern, divisor=np.array(["r", "d"]))
 
 
+
+def test_every_choice_is_checked_as_a_choice():
+    """A 250-input fuzz run found more choices compared with ``in``: arrays raised NumPy's ambiguous-truth error."""
+    from paperlib.arrangement import categorize, fit
+    from paperlib.datasets import categorization_cases, drawn_glyph_exemplar
+    from paperlib.pointprocess import Window
+    from paperlib.stipple import extract_marks
+
+    flags = np.zeros((5, 2), dtype=bool)
+    exemplar = drawn_glyph_exemplar((("o", 0.05, 12),), rng=0)
+    _raises(ValueError, r"^interaction must be one of", fit, exemplar.elements, exemplar.labels, Window.rectangle(),
+            interaction=flags)
+    for keyword in ("method", "histogram_range", "orientation", "topology"):
+        _raises(ValueError, rf"^{keyword} must be one of", categorize, exemplar.elements, exemplar.window.area,
+                **{keyword: flags})
+    _raises(ValueError, r"^family must be one of", categorization_cases, flags)
+    _raises(ValueError, r"^level must be one of", extract_marks, np.eye(8, dtype=bool), flags)
+
+
+def test_segment_blocks_reads_integer_and_bool_grays_as_numbers():
+    """Integers would wrap when subtracted (uint8) and NumPy does not subtract bools (found by fuzzing)."""
+    from paperlib.stipple import segment_blocks
+
+    eight_bit = np.array([[0, 255, 255], [0, 255, 255]], dtype=np.uint8)
+    np.testing.assert_array_equal(segment_blocks(eight_bit, 10), segment_blocks(eight_bit.astype(float), 10))
+    np.testing.assert_array_equal(segment_blocks(eight_bit > 0, 0.5), segment_blocks((eight_bit > 0) * 1.0, 0.5))
+
+
+def test_resample_curve_names_its_own_parameter():
+    from paperlib.sketch import resample_curve
+
+    _raises(ValueError, r"^points: cannot resample a curve of zero length", resample_curve, np.zeros((6, 2)), 34,
+            closed=True)
+
+
 def test_a_quadrature_grid_of_no_side_is_refused_naming_quadrature():
     from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
 

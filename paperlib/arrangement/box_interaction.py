@@ -67,7 +67,7 @@ import numba
 import numpy as np
 import pandas as pd
 
-from paperlib._checks import as_generator, finite_array
+from paperlib._checks import as_generator, check_choice, finite_array
 from paperlib.pointprocess import (
     MultiStraussHard,
     PairDistance,
@@ -124,8 +124,7 @@ class BoxInteractionFit:
 
 
 def _kind(distance: str) -> int:
-    if distance not in BOX_DISTANCES:
-        raise ValueError(f"distance must be one of {BOX_DISTANCES}, got {distance!r}")
+    check_choice(distance, BOX_DISTANCES, "distance")
     return BOX_DISTANCES.index(distance)
 
 

@@ -648,15 +648,12 @@ def categorize(
     elements = as_elements(elements)
     if not elements:
         raise ValueError("elements must hold at least one element (categorize needs one), got none")
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    check_choice(method, METHODS, "method")
     n_bins = _checked_bins(bins)
     epsilon = _checked_epsilon(epsilon)
     min_category_size = _checked_min_size(min_category_size)
-    if histogram_range not in _HISTOGRAM_RANGES:
-        raise ValueError(f"histogram_range must be one of {_HISTOGRAM_RANGES}, got {histogram_range!r}")
-    if orientation not in _ORIENTATIONS:
-        raise ValueError(f"orientation must be one of {_ORIENTATIONS}, got {orientation!r}")
+    check_choice(histogram_range, _HISTOGRAM_RANGES, "histogram_range")
+    check_choice(orientation, _ORIENTATIONS, "orientation")
     if features is None:
         features = element_features(elements, reference_area, topology=topology)
     else:

@@ -149,7 +149,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError, cKDTree
 
-from paperlib._checks import finite_array, positive_number
+from paperlib._checks import check_choice, finite_array, positive_number
 from paperlib.geometry import (
     Element,
     StackedStrokes,
@@ -526,8 +526,7 @@ def _one_element_topology(measure, element, topology, curvature_scale, corner_an
 
 def _topology_reading(elements, topology) -> str:
     """``"strokes"`` or ``"ink"``: where the elements' extremities and crossings are read."""
-    if topology not in TOPOLOGY_READINGS:
-        raise ValueError(f"topology must be one of {TOPOLOGY_READINGS}, got {topology!r}")
+    check_choice(topology, TOPOLOGY_READINGS, "topology")
     if topology != "auto":
         return topology
     return "ink" if reads_on_ink(elements) else "strokes"

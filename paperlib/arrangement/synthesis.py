@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from paperlib._checks import as_generator, budget, check_budget
+from paperlib._checks import as_generator, budget, check_budget, check_choice
 from paperlib.geometry import Element, Stroke, as_elements, oriented_bounding_boxes, write_svg
 from paperlib.pointprocess import (
     MultiStraussHard,
@@ -248,8 +248,7 @@ def fit(elements, labels, window, *, categories=None, interaction: str = "centre
     """
     elements = as_elements(elements)
     window = _check_window(window, "window")
-    if interaction not in INTERACTIONS:
-        raise ValueError(f"interaction must be one of {INTERACTIONS}, got {interaction!r}")
+    check_choice(interaction, INTERACTIONS, "interaction")
     if not elements:
         raise ValueError("fit needs a non-empty reference arrangement (no elements given)")
     marks, categories = _category_marks(labels, len(elements), categories)

@@ -63,7 +63,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from paperlib._checks import integer_at_least
+from paperlib._checks import check_choice, integer_at_least
 from paperlib.geometry import as_points, drop_repeated_vertices, oriented_ccw, ring_centroid
 
 __all__ = ["GshhsPolygon", "gshhs_resolutions", "gshhs_polygons", "coastlines"]
@@ -352,8 +352,7 @@ def coastlines(
     """
     n = integer_at_least(n, "n", 1)
     min_points = integer_at_least(min_points, "min_points", 3)
-    if projection not in _PROJECTIONS:
-        raise ValueError(f"projection must be one of {_PROJECTIONS}, got {projection!r}")
+    check_choice(projection, _PROJECTIONS, "projection")
     rings = _land_rings(_check_resolution(resolution))
     qualified = sorted(
         (ring for ring in rings if len(ring[0]) >= min_points), key=lambda r: (-r[1], r[2])

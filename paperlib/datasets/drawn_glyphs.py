@@ -93,7 +93,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from paperlib._checks import as_generator, integer_at_least, positive_number
+from paperlib._checks import as_generator, check_choice, integer_at_least, positive_number
 from paperlib.geometry import Element, Stroke
 from paperlib.pointprocess import PointPattern, Window
 
@@ -681,8 +681,7 @@ def categorization_cases(family: str = "main", rng=None) -> dict:
     ValueError
         If ``family`` is unknown.
     """
-    if family not in _FAMILIES:
-        raise ValueError(f"family must be one of {tuple(_FAMILIES)}, got {family!r}")
+    check_choice(family, tuple(_FAMILIES), "family")
     table = _FAMILIES[family]
     children = as_generator(rng).spawn(len(table))
     return {name: (differs, drawn_glyph_exemplar(types, font=_font_of(name), rng=child))

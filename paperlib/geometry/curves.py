@@ -160,10 +160,15 @@ def resample_closed_curve(ring, n_points: int, *, max_points: int = MAX_RESAMPLE
     ValueError
         If ``n_points`` is not an integer >= 3 (or above ``max_points``) or the curve has zero length.
     """
+    return _resampled_ring(ring, n_points, max_points, "ring")
+
+
+def _resampled_ring(ring, n_points, max_points, name: str) -> np.ndarray:
+    """:func:`resample_closed_curve`, its messages naming the ring ``name`` (for callers whose parameter it is)."""
     n_points = _checked_count(n_points, 3, max_points)
-    ring = as_points(ring, name="ring", min_points=2)
+    ring = as_points(ring, name=name, min_points=2)
     closed = np.vstack([ring, ring[:1]])
-    arc = _arc_lengths(closed, "ring")
+    arc = _arc_lengths(closed, name)
     return _points_at(closed, arc, np.arange(n_points) * (arc[-1] / n_points))
 
 

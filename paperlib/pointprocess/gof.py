@@ -50,6 +50,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from paperlib._checks import check_choice
+
 from .envelope import _simulated_curves
 from .pattern import PointPattern
 
@@ -238,10 +240,8 @@ def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, r
 
 
 def _check_options(alternative, clamp, leaveout, use_theory, ties) -> None:
-    if alternative not in ALTERNATIVES:
-        raise ValueError(f"alternative must be one of {ALTERNATIVES}, got {alternative!r}")
-    if ties not in TIE_RULES:
-        raise ValueError(f"ties must be one of {TIE_RULES}, got {ties!r}")
+    check_choice(alternative, ALTERNATIVES, "alternative")
+    check_choice(ties, TIE_RULES, "ties")
     if isinstance(leaveout, bool) or leaveout not in LEAVEOUT:
         raise ValueError(f"leaveout must be 0, 1 or 2, got {leaveout!r}")
     if not isinstance(clamp, (bool, np.bool_)):

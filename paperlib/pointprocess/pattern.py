@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from paperlib._checks import check_choice
 from paperlib.geometry import as_points
 
 from .window import Window
@@ -192,8 +193,7 @@ class PointPattern:
 
     def _first_copies(self, rule: str) -> np.ndarray:
         """For each point, the index of the first point at its location (and with its mark)."""
-        if rule not in DUPLICATE_RULES:
-            raise ValueError(f"rule must be one of {DUPLICATE_RULES}, got {rule!r}")
+        check_choice(rule, DUPLICATE_RULES, "rule")
         if self.n == 0:
             return np.zeros(0, dtype=np.int64)
         keys = self.points if rule == "unmark" else np.column_stack([self.points, self.marks])

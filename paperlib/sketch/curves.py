@@ -27,7 +27,8 @@ from scipy.ndimage import convolve1d
 
 from .._checks import (check_budget, check_flag, finite_array, integer_at_least, label, point_array,
                        positive_number)
-from ..geometry import as_points, resample_closed_curve, resample_open_curve
+from ..geometry import as_points, resample_open_curve
+from ..geometry.curves import MAX_RESAMPLE_POINTS, _resampled_ring
 
 __all__ = [
     "check_curve",
@@ -142,7 +143,9 @@ def resample_curve(points, n_points: int, *, closed: bool) -> np.ndarray:
         The samples, starting at the first vertex (an open polyline's last sample is its last vertex).
     """
     closed = check_flag(closed, "closed")
-    return resample_closed_curve(points, n_points) if closed else resample_open_curve(points, n_points)
+    if closed:
+        return _resampled_ring(points, n_points, MAX_RESAMPLE_POINTS, "points")
+    return resample_open_curve(points, n_points)
 
 
 def resample_simple(points, n_points: int, *, closed: bool, name: str = "curve") -> np.ndarray:

@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .._checks import check_budget, finite_array, integer_at_least, positive_number
+from .._checks import check_budget, check_choice, finite_array, integer_at_least, positive_number
 from ._kernels import rank_by_similarity
 from .curves import (
     check_curve,
@@ -366,8 +366,7 @@ def train(
     for flag, name in ((causal, "causal"), (subsample, "subsample"), (close_steering, "close_steering")):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError(f"{name} must be True or False, got {flag!r}")
-    if transitions not in TRANSITIONS:
-        raise ValueError(f"transitions must be one of {TRANSITIONS}, got {transitions!r}")
+    check_choice(transitions, TRANSITIONS, "transitions")
     curves = [check_curve(curve, closed=closed, name=f"curves[{k}]") for k, curve in enumerate(_curve_list(curves))]
     counts = _sample_counts(samples_per_curve, curves, order, scales)
     weights = _check_weights(weights, scales, order)

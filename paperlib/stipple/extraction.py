@@ -53,7 +53,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 from skimage.measure import label, regionprops
 
-from paperlib._checks import positive_number
+from paperlib._checks import check_choice, positive_number
 
 from .glcm import _checked_bitonal
 from .voronoi_stippling import weighted_centroids
@@ -147,11 +147,8 @@ def _checked_texture(texture) -> np.ndarray:
 
 
 def _checked_level(level) -> str | None:
-    if level == "auto":
-        return None
-    if level not in LEVELS:
-        raise ValueError(f"level must be 'auto', 'light', 'merged' or 'dark', got {level!r}")
-    return level
+    check_choice(level, ("auto", *LEVELS), "level")
+    return None if level == "auto" else level
 
 
 # ============================================================================ levels

@@ -224,9 +224,11 @@ def segment_blocks(block_gray, t1) -> np.ndarray:
     ValueError
         If ``block_gray`` is not a finite 2-D array or ``t1`` not a non-negative number.
     """
-    finite_array(block_gray, "block_gray", ndim=2)  # checked, used as given (no dtype change)
+    finite_array(block_gray, "block_gray", ndim=2)
     positive_number(t1, "t1", allow_zero=True)
     block_gray = np.asarray(block_gray)
+    if block_gray.dtype.kind != "f":  # floats are used as given; integers would wrap and bools not subtract
+        block_gray = block_gray.astype(np.float64)
     labels = np.zeros(block_gray.shape, dtype=np.int64)
     next_label = 1
     for flat in _seed_order(block_gray):

@@ -133,8 +133,7 @@ def render_input(name: str, size: int) -> np.ndarray:
     ValueError
         For an unknown name or ``size`` < 2.
     """
-    if name not in IMAGES:
-        raise ValueError(f"image must be one of {', '.join(IMAGES)}; got {name!r}")
+    check_choice(name, tuple(IMAGES), "image")
     if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or size < 2:
         raise ValueError(f"size must be an integer >= 2, got {size!r}")
     if name == "ramp":
