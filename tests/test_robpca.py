@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.stats import mannwhitneyu
 
 from paperlib.arrangement import robpca
 from paperlib.arrangement.robpca import DistanceCutoffs, ExactFitError, RobustPCA, robust_pca, subset_size
@@ -133,39 +134,51 @@ def test_hurtut_sized_category_matches_rrcov_to_rounding(k):
         assert flagged(ours) == set(reference["outliers"])
 
 
-def rrcov_spread(name: str, k: int) -> dict:
-    """How far rrcov's own answer moves when only its 250 directions change (rows permuted)."""
+#: Mann-Whitney level below which two samples of answers are not one distribution: with the 56 tests of the
+#: two tests below, a false alarm has probability under 6e-3 (the seeds are fixed: it would fail everywhere).
+RANK_TEST_LEVEL = 1e-4
+
+
+def answer_measures(components, eigenvalues, outliers, reference: dict, k: int) -> dict:
+    """How far one answer is from rrcov's reference answer, rounded to the fixture's precision."""
+    reference_loadings = loadings(reference, k)
+    return {
+        "first component (degrees)": round(angle_degrees(components[:, 0], reference_loadings[:, 0]), 6),
+        "subspace (degrees)": round(subspace_angle_degrees(components, reference_loadings), 6),
+        "eigenvalues (relative)": round(float(np.max(np.abs(np.asarray(eigenvalues) / reference["eigenvalues"] - 1))), 9),
+        "flagged rows": len(outliers ^ rrcov_flagged(reference)),
+    }
+
+
+def assert_same_distribution_as_rrcov(name: str, k: int):
+    """Our answers for seeds 0-19 and rrcov's 21 (the rows as they are and 20 row orders) are one distribution.
+
+    With n (n - 1) / 2 > 250 pairs, ROBPCA's outlyingness uses 250 random directions: rrcov picks them with a
+    fixed generator, we with ``rng``, and its answer moves when only the rows are reordered (which changes
+    its pairs): e.g. 0.8 degrees for the first component of ``planted`` with k = 2, 11 degrees for its second,
+    5.8 degrees for hbk's poorly separated first component. Each implementation lands on one of a few fits;
+    neither has a single answer, and a bound at the largest of rrcov's 21 is crossed by our seeds now and
+    then (7 of 40 seeds on the drawn data) while the two distributions agree. So each measure of distance to
+    rrcov's reference answer is compared as two samples, by a two-sided Mann-Whitney rank-sum test.
+    """
     reference = rrcov_fits(name, k)[0]
-    first, subspace, eigenvalue, flags = [0.0], [0.0], [0.0], [0]
-    for permuted in (p for p in ORACLE["permutations"] if p["data"] == name and p["k"] == k):
-        first.append(angle_degrees(loadings(permuted, k)[:, 0], loadings(reference, k)[:, 0]))
-        subspace.append(subspace_angle_degrees(loadings(permuted, k), loadings(reference, k)))
-        eigenvalue.append(np.max(np.abs(np.array(permuted["eigenvalues"]) / reference["eigenvalues"] - 1)))
-        flags.append(len(rrcov_flagged(permuted) ^ rrcov_flagged(reference)))
-    return {"first": max(first), "subspace": max(subspace), "eigenvalue": max(eigenvalue), "flags": max(flags)}
+    theirs = [answer_measures(loadings(fit, k), fit["eigenvalues"], rrcov_flagged(fit), reference, k)
+              for fit in [reference] + [p for p in ORACLE["permutations"] if p["data"] == name and p["k"] == k]]
+    fits = [robust_pca(DATA[name], k, rng=seed) for seed in range(20)]
+    ours = [answer_measures(fit.components, fit.eigenvalues, flagged(fit), reference, k) for fit in fits]
+    for measure in theirs[0]:
+        a, b = [m[measure] for m in ours], [m[measure] for m in theirs]
+        p_value = 1.0 if len(set(a) | set(b)) == 1 else float(mannwhitneyu(a, b).pvalue)
+        assert p_value >= RANK_TEST_LEVEL, f"{name}, k = {k}, {measure}: ours {sorted(a)}, rrcov {sorted(b)}"
+    for fit in fits:
+        assert fit.subset_size == reference["h"]
+        assert fit.cutoffs.score == pytest.approx(reference["cutoff_sd"], rel=EXACT)
 
 
 @pytest.mark.parametrize("name", ["planted", "hbk", "starsCYG"])
 @pytest.mark.parametrize("k", [1, 2])
-def test_larger_data_sets_agree_with_rrcov_within_its_own_spread(name, k):
-    # With n > 22, ROBPCA's outlyingness uses 250 of the n(n-1)/2 pairs: rrcov picks them with a
-    # fixed generator, we with `rng`, so the h-subsets, and with them the answers, can differ by
-    # a few observations. The yardstick is rrcov itself: its answer on the same data with the rows
-    # permuted (which changes its pairs and nothing else) moves by up to the recorded spread --
-    # e.g. 0.8 degrees for the first component of `planted` with k = 2, 11 degrees for its second,
-    # 5.8 degrees for hbk's poorly separated first component (eigenvalues 2.19 and 1.80). Our
-    # answers for five seeds must stay within that spread (our spread over 200 seeds is the same).
-    reference = rrcov_fits(name, k)[0]
-    spread = rrcov_spread(name, k)
-    reference_loadings = loadings(reference, k)
-    for seed in range(5):
-        ours = robust_pca(DATA[name], k, rng=seed)
-        assert angle_degrees(ours.components[:, 0], reference_loadings[:, 0]) <= spread["first"] + 1e-6
-        assert subspace_angle_degrees(ours.components, reference_loadings) <= spread["subspace"] + 1e-6
-        relative = np.max(np.abs(ours.eigenvalues / reference["eigenvalues"] - 1))
-        assert relative <= spread["eigenvalue"] + EXACT
-        assert len(flagged(ours) ^ set(reference["outliers"])) <= spread["flags"]
-        assert ours.cutoffs.score == pytest.approx(reference["cutoff_sd"], rel=EXACT)
+def test_larger_data_sets_agree_with_rrcov_in_distribution(name, k):
+    assert_same_distribution_as_rrcov(name, k)
 
 
 DRAWN = sorted(name for name in DATA if name.startswith("drawn_"))
@@ -173,25 +186,10 @@ DRAWN = sorted(name for name in DATA if name.startswith("drawn_"))
 
 @pytest.mark.parametrize("name", DRAWN)
 @pytest.mark.parametrize("k", [1, 2])
-def test_drawn_glyph_features_agree_with_rrcov_within_its_own_spread(name, k):
+def test_drawn_glyph_features_agree_with_rrcov_in_distribution(name, k):
     # Hurtut's appearance features of hand-drawn glyph arrangements (categorization_cases("main", 0)):
     # non-identical elements of 1 to 5 types, the matrices categorize(method="paper") hands to ROBPCA.
-    # The components and eigenvalues must lie within rrcov's own spread over row orders; the flagged
-    # rows differ from rrcov's reference by no more than rrcov's own answers differ among themselves
-    # (the borderline rows move with the directions: up to 5 rows for drawn_crossings_top_row, k = 1).
-    reference = rrcov_fits(name, k)[0]
-    answers = [reference] + [p for p in ORACLE["permutations"] if p["data"] == name and p["k"] == k]
-    spread = rrcov_spread(name, k)
-    flag_spread = max(len(rrcov_flagged(a) ^ rrcov_flagged(b)) for a in answers for b in answers)
-    reference_loadings = loadings(reference, k)
-    for seed in range(5):
-        ours = robust_pca(DATA[name], k, rng=seed)
-        assert ours.subset_size == reference["h"]
-        assert angle_degrees(ours.components[:, 0], reference_loadings[:, 0]) <= spread["first"] + 1e-6
-        assert subspace_angle_degrees(ours.components, reference_loadings) <= spread["subspace"] + 1e-6
-        assert np.max(np.abs(ours.eigenvalues / reference["eigenvalues"] - 1)) <= spread["eigenvalue"] + 1e-8
-        assert len(flagged(ours) ^ rrcov_flagged(reference)) <= flag_spread
-        assert ours.cutoffs.score == pytest.approx(reference["cutoff_sd"], rel=EXACT)
+    assert_same_distribution_as_rrcov(name, k)
 
 
 def test_rrcov_does_not_depend_on_its_seed():
