@@ -290,9 +290,25 @@ def test_requires_skips_an_optional_comparison_whose_package_is_absent(tmp_path)
     assert table.loc["a", "status"] == "pass"
     assert table.loc["b", "status"] == "skipped" and table.loc["b", "ok"]
     assert table.loc["c", "status"] == "FAIL" and "not recorded" in table.loc["c", "reason"]  # json is installed
+    # a run that recorded the statistic had the package: it is checked wherever the figures are read
+    (folder / "stats.json").write_text(json.dumps({"quality": "ci", "statistics": {"a": 1.0, "b": 5.0}}))
+    table = repro.check_stats(tmp_path / "figures", expected).set_index("statistic")
+    assert table.loc["b", "status"] == "FAIL" and not table.loc["b", "ok"]
     expected.write_text('[nb.a]\nkind = "truth"\nvalue = 1.0\nrequires = "not a package"\nsource = "by construction"\n')
     with pytest.raises(ValueError, match="requires"):
         repro.load_expected(expected)
+
+
+def test_statistics_without_an_entry_keep_their_recorded_order(tmp_path):
+    """Rows of statistics not in the expected file follow the record, not a set's hash order (INDEX.md is stable)."""
+    folder = tmp_path / "figures" / "nb"
+    folder.mkdir(parents=True)
+    names = [f"time_{k}" for k in "qwertyuiopasdfghjkl"]
+    (folder / "stats.json").write_text(json.dumps({"quality": "ci", "statistics": {name: 1.0 for name in names}}))
+    expected = tmp_path / "expected.toml"
+    expected.write_text('[nb.other]\nkind = "truth"\nvalue = 1.0\nsource = "by construction"\n')
+    table = repro.check_stats(tmp_path / "figures", expected)
+    assert list(table.statistic[table.status == "shown"]) == names
 
 
 # --------------------------------------------------------------------------- numba kernels used
