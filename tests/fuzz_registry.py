@@ -413,7 +413,7 @@ REGISTRY = {
     "paperlib.mlts.tessellation_cells": "structure=structure samples=count ; rng=rng max_samples=count",
     "paperlib.mlts.texture_svg": "structure=structure settings=any ; palette=str",
     "paperlib.mlts.texel": "kind=str ; rng=rng n_vertices=count",
-    "paperlib.mlts.texel_batch": "kind=str count=count ; rng=rng n_vertices=count",
+    "paperlib.mlts.texel_batch": "kind=str count=count ; rng=rng n_vertices=count max_count=count",
     "paperlib.mlts.write_texture_svg": "structure=structure settings=any path=path ; palette=str",
     "paperlib.mlts.voronoi_tessellation": "shape=shape n_cells=count ; palette=str rng=rng return_labels=bool return_geometry=bool",
     "paperlib.sketch.box_counting_dimension": "points=points ; max_samples=count | closed=bool",

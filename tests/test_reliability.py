@@ -451,6 +451,21 @@ def test_resample_curve_names_its_own_parameter():
             closed=True)
 
 
+
+def test_defects_of_a_second_250_input_fuzz_run():
+    """texel_batch allocated for any count; a huge mark radius overflowed ``**``; a string r was read by NumPy."""
+    from paperlib.datasets import stipple_tone_sheet
+    from paperlib.mlts import texel_batch
+    from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
+
+    _raises(ValueError, r"max_count=10,000,000", texel_batch, "rectangle", 2**63 - 1)
+    assert len(texel_batch("rectangle", 3, max_count=3)) == 3
+    image, _ = stipple_tone_sheet(2, 16, rng=0, transition=0, mark_radius=2.3e191)  # no marks fit: no crash
+    assert image.shape == (16, 32)
+    pattern = PointPattern(np.random.default_rng(0).random((30, 2)), Window.rectangle())
+    _raises(ValueError, r"^r must be an array of numbers", fit_strauss_hardcore, pattern, r="0.1 or so")
+
+
 def test_a_quadrature_grid_of_no_side_is_refused_naming_quadrature():
     from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
 

@@ -42,7 +42,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 from scipy.spatial.distance import pdist
 
-from .._checks import as_generator, check_choice, float_array, positive_number
+from .._checks import as_generator, budget, check_budget, check_choice, float_array, positive_number
 
 __all__ = [
     "TEXELS",
@@ -73,6 +73,9 @@ CONVEX_POINTS = (5, 12)
 MIN_CONVEX_FILL = 0.05
 #: Redraws allowed for a convex polygon before giving up (a sliver: ~7% for 3 points, far less for 5+).
 MAX_CONVEX_DRAWS = 100
+#: Default budget of :func:`texel_batch`: the most texels of one call (10**7; the sampler draws a few thousand).
+#: Raise it with the ``max_count`` keyword.
+MAX_TEXEL_BATCH = 10_000_000
 #: Random-shape radius r(phi) = 1 + sum_j a_j cos(j phi + p_j): harmonics j = 1..J, J drawn here.
 RANDOM_SHAPE_HARMONICS = (2, 5)
 #: Range of sum_j |a_j|; below 1 the radius stays positive, so the shape is star-shaped.
@@ -152,7 +155,8 @@ def texel(kind: str, rng=None, *, n_vertices: int | None = None) -> np.ndarray:
     return texel_batch(kind, 1, rng, n_vertices=n_vertices)[0]
 
 
-def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = None) -> list[np.ndarray]:
+def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = None,
+                max_count: int = MAX_TEXEL_BATCH) -> list[np.ndarray]:
     """``count`` independent texels of one kind, drawn together (the sampler's fast path).
 
     Each is distributed as :func:`texel` describes; drawing them in one call vectorises the
@@ -168,6 +172,8 @@ def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = Non
         Source of randomness; the same seed gives the same texels bit for bit.
     n_vertices : int, optional
         Vertex count where the kind allows it (see :func:`texel`).
+    max_count : int, optional
+        Budget: the most texels (default :data:`MAX_TEXEL_BATCH`), checked before anything is drawn.
 
     Returns
     -------
@@ -177,12 +183,14 @@ def texel_batch(kind: str, count: int, rng=None, *, n_vertices: int | None = Non
     Raises
     ------
     ValueError
-        Unknown ``kind``, a vertex count the kind does not accept, or a negative ``count``.
+        Unknown ``kind``, a vertex count the kind does not accept, a negative ``count`` or one above
+        ``max_count``.
     """
     check_choice(kind, TEXELS, "kind")
     n_vertices = _vertex_count(kind, n_vertices)
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 0:
         raise ValueError(f"count must be a non-negative integer, got {count!r}")
+    check_budget(count, budget(max_count, "max_count"), "max_count", "texels")
     if kind in ("rectangle", "ellipse"):
         fixed = _fixed_texel(kind, n_vertices)
         return [fixed.copy() for _ in range(count)]

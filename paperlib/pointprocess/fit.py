@@ -1171,7 +1171,7 @@ def fit_strauss_hardcore(pattern: PointPattern, *, hardcore: str = "minimum", r=
 
 def _given_radii(pattern: PointPattern, r, h) -> np.ndarray:
     m = pattern.n_types
-    radii = np.array(r, dtype=np.float64)
+    radii = finite_array(r, "r")
     if radii.ndim == 0:
         radii = np.full((m, m), float(radii))
     if radii.shape != (m, m):
