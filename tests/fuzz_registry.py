@@ -373,7 +373,7 @@ REGISTRY = {
     "paperlib.stipple.StippleLibrary": "examples=any distributions=any syntheses=any marks=counts tone_grays=vector",
     "paperlib.stipple.StippleRendering": "image=image tone_index=counts distribution=image tone_grays=vector removed_ink=image removed_paper=image level_grays=any pure_levels=vector",
     "paperlib.stipple.SynthesisResult": "texture=image ace_history=any accepted_flips=any attempts=any fallback_passes=any converged=bool seconds=float counts=counts offsets=vector geometry=any ; spacing=float acceptance=float",
-    "paperlib.stipple.synthesize_distribution": "example=any ; size=count iterations=count offsets=vector spacing=float acceptance=float rng=rng",
+    "paperlib.stipple.synthesize_distribution": "example=any ; size=count iterations=count offsets=vector spacing=float acceptance=float rng=rng max_pixels=count",
     "paperlib.stipple.to_bitonal": "image=image",
     "paperlib.stipple.tone_gray_levels": "distribution_textures=image marks_per_tone=vector ; rng=rng",
     "paperlib.stipple.ToneMap": "gray_levels=any textures=any rectangles=any region_ids=any block_labels=any block_gray=image block_size=count",

@@ -157,7 +157,10 @@ def test_hard_core_pair_and_dark_min_are_checked():
 
 
 def test_a_tone_too_small_for_its_marks_is_drawn_as_no_ink_expected():
-    """A random fuzz run: tone 1e-308 with marks of radius 2.5e16 px underflowed the expected mark count
-    to 0 and divided by it."""
-    texture = stipple_tone_texture(1e-308, size=63, mark_radius=2.5e16, rng=1)
-    assert texture.shape == (63, 63)
+    """Random fuzz runs: tone 1e-308 with marks of radius 2.5e16 px underflowed the expected mark count to 0
+    and divided by it; radii of 1e191 and 1e308 overflowed. A mark must fit in the texture; a tone too
+    small for one mark is white."""
+    texture = stipple_tone_texture(1e-308, size=63, mark_radius=31.5, rng=1)
+    assert texture.shape == (63, 63) and not texture.any()
+    with pytest.raises(ValueError, match=r"^mark_radius must be between 1 pixel and half the size \(31.5 px\)"):
+        stipple_tone_texture(1e-308, size=63, mark_radius=2.5e16, rng=1)

@@ -452,16 +452,22 @@ def test_resample_curve_names_its_own_parameter():
 
 
 
-def test_defects_of_a_second_250_input_fuzz_run():
-    """texel_batch allocated for any count; a huge mark radius overflowed ``**``; a string r was read by NumPy."""
-    from paperlib.datasets import stipple_tone_sheet
+def test_defects_of_the_second_and_third_250_input_fuzz_runs():
+    """texel_batch and synthesize_distribution allocated for any size; a huge mark radius overflowed ``**``; a
+    string r was read by NumPy; a tiny glyph size collapsed the pen (second and third 250-input runs)."""
+    from paperlib.datasets import amacrine_exemplar, stipple_tone_sheet
     from paperlib.mlts import texel_batch
     from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
+    from paperlib.stipple import synthesize_distribution
 
     _raises(ValueError, r"max_count=10,000,000", texel_batch, "rectangle", 2**63 - 1)
     assert len(texel_batch("rectangle", 3, max_count=3)) == 3
-    image, _ = stipple_tone_sheet(2, 16, rng=0, transition=0, mark_radius=2.3e191)  # no marks fit: no crash
-    assert image.shape == (16, 32)
+    _raises(ValueError, r"^mark_radius must be between 1 pixel and half the block \(8 px\)", stipple_tone_sheet,
+            2, 16, rng=0, transition=0, mark_radius=2.3e191)  # (a third run: 1e308 reached int(nan))
+    _raises(ValueError, r"above the budget max_pixels=16,777,216", synthesize_distribution, np.eye(4, dtype=bool),
+            size=10**9)
+    _raises(ValueError, r"^size must keep the glyphs' coordinates finite and their area above 0", amacrine_exemplar,
+            size=1e-308)
     pattern = PointPattern(np.random.default_rng(0).random((30, 2)), Window.rectangle())
     _raises(ValueError, r"^r must be an array of numbers", fit_strauss_hardcore, pattern, r="0.1 or so")
 

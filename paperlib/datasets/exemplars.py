@@ -249,8 +249,9 @@ def _glyph(char: str, font: str, size: float) -> _Glyph:
     scale = size / extent
     centre = np.array([(xmin + xmax) / 2, (ymin + ymax) / 2])
     largest = max(float(np.abs(glyph.points - centre).max()), max(stroke.width for stroke in glyph.strokes))
-    if not (math.isfinite(scale * largest) and math.isfinite(scale * scale)):  # the pen scales by sqrt(det)
-        raise ValueError(f"size must keep the glyphs' coordinates finite, got {size!r}")
+    if not (math.isfinite(scale * largest) and 0.0 < scale * scale < math.inf):  # the pen scales by sqrt(det)
+        raise ValueError(f"size must keep the glyphs' coordinates finite and their area above 0 in floats, "
+                         f"got {size!r}")
     element = glyph.transformed(scale * np.eye(2), -scale * centre)
     points = element.points
     half = np.array([(xmax - xmin) / 2, (ymax - ymin) / 2]) * scale

@@ -121,6 +121,15 @@ def _check_pixels(pixels: int, max_pixels) -> None:
     check_budget(pixels, budget(max_pixels, "max_pixels"), "max_pixels", "pixels")
 
 
+def _check_mark_radius(mark_radius, side: int, side_name: str) -> float:
+    """A mark radius of at least 1 pixel whose mark fits in a texture of ``side`` pixels (named ``side_name``)."""
+    mark_radius = positive_number(mark_radius, "mark_radius")
+    if not 1.0 <= mark_radius <= side / 2:
+        raise ValueError(f"mark_radius must be between 1 pixel and half the {side_name} ({side / 2:g} px), "
+                         f"got {mark_radius!r}")
+    return mark_radius
+
+
 def _check_size(size, name: str, minimum: int) -> int:
     if isinstance(size, bool) or not isinstance(size, (int, np.integer)):
         raise ValueError(f"{name} must be an integer, got {size!r}")
@@ -333,7 +342,8 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
     Raises
     ------
     ValueError
-        If ``tone`` is outside [0, 1], ``size`` is not an integer >= 16, ``mark_radius`` < 1,
+        If ``tone`` is outside [0, 1], ``size`` is not an integer >= 16, ``mark_radius`` is not in
+        ``[1, size / 2]``,
         ``light_max`` is outside (0, 0.5), ``dark_min`` is not in (``light_max``, 1) or
         ``hard_core`` is outside [0, 0.8].
 
@@ -349,9 +359,7 @@ def stipple_tone_texture(tone, size=256, rng=None, *, mark_radius=3.0, light_max
     tone = _check_tone(tone)
     size = _check_size(size, "size", MIN_SIZE)
     _check_pixels(size * size, max_pixels)
-    mark_radius = positive_number(mark_radius, "mark_radius")
-    if mark_radius < 1.0:
-        raise ValueError(f"mark_radius must be at least 1 pixel, got {mark_radius!r}")
+    mark_radius = _check_mark_radius(mark_radius, size, "size")
     light_max = positive_number(light_max, "light_max")
     if light_max >= 0.5:
         raise ValueError(f"light_max must be in (0, 0.5), got {light_max!r}")
@@ -486,7 +494,8 @@ def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8,
     Raises
     ------
     ValueError
-        If ``n_tones`` < 2, ``block`` is too small, or ``transition`` / ``cell`` are invalid.
+        If ``n_tones`` < 2, ``block`` is too small, ``transition`` / ``cell`` are invalid, or
+        ``mark_radius`` is not in ``[1, block / 2]``.
 
     Notes
     -----
@@ -507,9 +516,7 @@ def stipple_tone_sheet(n_tones=8, block=256, rng=None, *, transition=32, cell=8,
     block = _check_size(block, "block", max(MIN_SIZE, 2 * transition))
     _check_pixels(n_tones * block * block, max_pixels)
     cell = _check_size(cell, "cell", 1)
-    mark_radius = positive_number(mark_radius, "mark_radius")
-    if mark_radius < 1.0:
-        raise ValueError(f"mark_radius must be at least 1 pixel, got {mark_radius!r}")
+    mark_radius = _check_mark_radius(mark_radius, block, "block")
     rng = as_generator(rng)
 
     half = transition // 2

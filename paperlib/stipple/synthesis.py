@@ -60,7 +60,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from paperlib._checks import as_generator, instance_of
+from paperlib._checks import as_generator, budget, check_budget, instance_of
 from scipy.spatial import cKDTree
 from skimage.measure import label, regionprops
 
@@ -659,6 +659,11 @@ class SynthesisResult:
         return float(self.ace_history[-1])
 
 
+#: Default budget of :func:`synthesize_distribution`: the most pixels of the synthesized texture (2**24, a
+#: 4096 x 4096 texture; the paper's are 256 x 256). Raise it with the ``max_pixels`` keyword.
+MAX_SYNTHESIS_PIXELS = 2**24
+
+
 def _output_shape(size, example_shape) -> tuple[int, int]:
     """The synthesized texture's shape from ``size`` (None, an int, or (height, width))."""
     if size is None:
@@ -826,6 +831,7 @@ def synthesize_distribution(
     spacing: str = "matched",
     acceptance: str = "sum",
     rng=None,
+    max_pixels: int = MAX_SYNTHESIS_PIXELS,
 ) -> SynthesisResult:
     """Synthesize a bitonal distribution texture whose GLCMs match the example's (Kim 2009, 3.4).
 
@@ -876,6 +882,9 @@ def synthesize_distribution(
         drops, the paper's literal "lower ... for all displacement offset vectors" (3.4.1).
     rng : None, int or numpy.random.Generator, optional
         Random source; a seed fixes the output bit for bit.
+    max_pixels : int, optional
+        Budget: the most pixels of the synthesized texture (default :data:`MAX_SYNTHESIS_PIXELS`,
+        2**24, a 4096 x 4096 texture), checked before anything is allocated.
 
     Returns
     -------
@@ -885,8 +894,9 @@ def synthesize_distribution(
     ------
     ValueError
         Non-bitonal example or seed, a seed whose shape disagrees with ``size``, a texture
-        smaller than an offset (or with a side < 2), malformed offsets, ``iterations`` < 1 or not
-        an integer, an invalid geometry, an unknown ``spacing`` or ``acceptance``.
+        smaller than an offset (or with a side < 2) or larger than ``max_pixels``, malformed
+        offsets, ``iterations`` < 1 or not an integer, an invalid geometry, an unknown ``spacing``
+        or ``acceptance``.
 
     Notes
     -----
@@ -915,7 +925,9 @@ def synthesize_distribution(
     if min(target_texture.shape) < 2:
         raise ValueError(f"example of shape {target_texture.shape} is too small: need at least 2 x 2 pixels")
     if seed_texture is None:
-        texture = np.zeros(_output_shape(size, target_texture.shape), dtype=np.bool_)
+        shape = _output_shape(size, target_texture.shape)
+        check_budget(shape[0] * shape[1], budget(max_pixels, "max_pixels"), "max_pixels", "texture pixels")
+        texture = np.zeros(shape, dtype=np.bool_)
     else:
         texture = _checked_bitonal(seed_texture, "seed_texture").copy()
         if size is not None and _output_shape(size, target_texture.shape) != texture.shape:
