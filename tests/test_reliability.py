@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import gzip
+import math
 import os
 
 import numpy as np
@@ -452,11 +453,11 @@ def test_resample_curve_names_its_own_parameter():
 
 
 
-def test_defects_of_the_second_and_third_250_input_fuzz_runs():
+def test_defects_of_the_later_250_input_fuzz_runs():
     """texel_batch and synthesize_distribution allocated for any size; a huge mark radius overflowed ``**``; a
-    string r was read by NumPy; a tiny glyph size collapsed the pen (second and third 250-input runs)."""
+    string r was read by NumPy; a tiny glyph size collapsed the pen; a tiny r_min overflowed (runs 2-4)."""
     from paperlib.datasets import amacrine_exemplar, stipple_tone_sheet
-    from paperlib.mlts import texel_batch
+    from paperlib.mlts import dead_leaves_coverage_std, texel_batch
     from paperlib.pointprocess import PointPattern, Window, fit_strauss_hardcore
     from paperlib.stipple import synthesize_distribution
 
@@ -468,6 +469,9 @@ def test_defects_of_the_second_and_third_250_input_fuzz_runs():
             size=10**9)
     _raises(ValueError, r"^size must keep the glyphs' coordinates finite and their area above 0", amacrine_exemplar,
             size=1e-308)
+    # a fourth run: r_min**(1 - alpha) overflowed in the quadrature of the lens areas
+    assert math.isfinite(dead_leaves_coverage_std(10**12, (64, 2), 1.65e-295, 1.0))
+    assert math.isfinite(dead_leaves_coverage_std(200, (32, 32), 1e-300, 4.0, alpha=2.5))
     pattern = PointPattern(np.random.default_rng(0).random((30, 2)), Window.rectangle())
     _raises(ValueError, r"^r must be an array of numbers", fit_strauss_hardcore, pattern, r="0.1 or so")
 

@@ -307,11 +307,27 @@ def _mean_lens_area(distances: np.ndarray, r_min, r_max, alpha, n_radii: int = 4
     r = np.exp(u)
     weights = np.full(n_radii, 2.0)
     weights[1::2], weights[0], weights[-1] = 4.0, 1.0, 1.0
-    weights *= (u[1] - u[0]) / 3.0 * r ** (1.0 - alpha) / _power_moment(r_min, r_max, -alpha)
+    weights *= (u[1] - u[0]) / 3.0 * _radius_density_weights(u, r, r_min, r_max, alpha)
     half = distances[:, None] / 2.0
     ratio = np.clip(half / r[None, :], 0.0, 1.0)
     lens = 2.0 * r[None, :] ** 2 * np.arccos(ratio) - 2.0 * half * np.sqrt(np.maximum(r[None, :] ** 2 - half**2, 0.0))
     return lens @ weights
+
+
+def _radius_density_weights(u: np.ndarray, r: np.ndarray, r_min, r_max, alpha) -> np.ndarray:
+    """r f(r) at ``r = exp(u)``, f the radius density ~ r^(-alpha) on [r_min, r_max].
+
+    The direct formula (same bits as always) unless a power over- or underflows (r_min = 1e-295 with
+    alpha = 3); then from the logarithms, as :func:`dead_leaves_mean_area` does.
+    """
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        try:
+            direct = r ** (1.0 - alpha) / _power_moment(r_min, r_max, -alpha)
+        except (OverflowError, ZeroDivisionError):
+            direct = None
+    if direct is not None and np.all(np.isfinite(direct)) and np.all(direct > 0):
+        return direct
+    return np.exp((1.0 - alpha) * u - _log_power_moment(r_min, r_max, -alpha))
 
 
 def dead_leaves_coverage_std(n, shape, r_min, r_max, alpha=3.0) -> float:
