@@ -13,7 +13,12 @@ __all__ = ["integer_at_least", "positive_number"]
 
 
 def positive_number(value, name: str, *, allow_zero: bool = False) -> float:
-    """``value`` as a float, or a ValueError naming ``name`` unless it is finite and > 0 (>= 0)."""
+    """``value`` as a float, or a ValueError naming ``name`` unless it is finite and > 0 (>= 0).
+
+    A bool or a string is not a number here, though ``float`` would convert it (True to 1.0, "3" to 3.0).
+    """
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise ValueError(f"{name} must be a number, got {value!r:.80}")
     try:
         number = float(value)
     except (TypeError, ValueError):

@@ -176,6 +176,15 @@ def test_bad_iterations(iterations):
         lloyd_relaxation([(0.5, 0.5)], UNIT, iterations)
 
 
+def test_cells_beyond_the_budget_are_refused_before_the_first_step():
+    points = [(0.2, 0.2), (0.8, 0.7)]
+    with pytest.raises(ValueError, match="max_cells"):
+        lloyd_relaxation(points, UNIT, 10**9)
+    with pytest.raises(ValueError, match="max_cells"):
+        lloyd_relaxation(points, UNIT, 4, max_cells=7)
+    np.testing.assert_array_equal(lloyd_relaxation(points, UNIT, 4, max_cells=8), lloyd_relaxation(points, UNIT, 4))
+
+
 @pytest.mark.parametrize("tol", [-1.0, np.nan, "x"])
 def test_bad_tol(tol):
     with pytest.raises(ValueError, match="tol"):

@@ -11,7 +11,7 @@ import pytest
 
 from paperlib import repro
 from paperlib._atomic import publish_folder, recover_folder
-from paperlib._checks import as_generator
+from paperlib._checks import as_generator, positive_number
 from paperlib.acontrario import meaningful_intervals
 from paperlib.geometry import read_svg
 from paperlib.mlts import Script, render
@@ -140,6 +140,14 @@ def test_publish_replaces_the_folder_and_recovers_an_interrupted_publish(tmp_pat
 def test_rng_kinds_are_checked_in_one_place(bad):
     with pytest.raises(TypeError, match="rng must be None, an int seed, a SeedSequence or a numpy.random.Generator"):
         as_generator(bad)
+
+
+@pytest.mark.parametrize("bad", [True, np.bool_(True), "3", b"3"])
+def test_bools_and_strings_are_not_positive_numbers(bad):
+    """float() turns True into 1.0 and "3" into 3.0: a flag or a text passed for a size must be refused."""
+    with pytest.raises(ValueError, match="radius must be a number"):
+        positive_number(bad, "radius")
+    assert positive_number(np.float32(2.5), "radius") == 2.5 and positive_number(3, "radius") == 3.0
 
 
 def test_as_generator_is_default_rng_bit_for_bit():
@@ -289,6 +297,15 @@ def test_ace_change_kernel_checks_target_and_totals():
     (lambda: __import__("paperlib.datasets").datasets.stipple_tone_texture(0.5, 10**5), "max_pixels"),
     (lambda: __import__("paperlib.stipple").stipple.paper_offsets(10**9), "max_n"),
     (lambda: __import__("paperlib.strokepattern").strokepattern.ring_neighbourhoods(10**12, [[0, 1]], 2), "max_pairs"),
+    # a random fuzz run: a 1e9 x 1e9 line tessellation without lines reached a 7.45 GiB allocation
+    (lambda: __import__("paperlib.mlts").mlts.poisson_line_tessellation((10**9, 10**9), 0), "max_pixels"),
+    (lambda: __import__("paperlib.mlts").mlts.voronoi_tessellation((10**5, 10**5), 3), "max_pixels"),
+    (lambda: __import__("paperlib.mlts").mlts.dead_leaves((64, 64), n_leaves=3, r_min=1, r_max=4, max_pixels=4095),
+     "max_pixels"),
+    (lambda: __import__("paperlib.mlts").mlts.coverage([(0, 0), (1e9, 0), (0, 1e9)], (10**6, 10**6)), "max_samples"),
+    (lambda: __import__("paperlib.geometry").geometry.lloyd_relaxation([(0.5, 0.5)], (0, 1, 0, 1), 10**9), "max_cells"),
+    (lambda: __import__("paperlib.strokepattern").strokepattern.seeds_2d((0, 1, 0, 1), 4, iterations=10**9),
+     "max_cells"),
     (lambda: __import__("paperlib.strokepattern").strokepattern.ring_neighbourhoods(
         5000, [[0, leaf] for leaf in range(1, 5000)], 2, max_pairs=10**6), "max_pairs"),
 ])

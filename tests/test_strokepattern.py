@@ -247,6 +247,19 @@ def test_seed_counts_beyond_the_budget_are_refused_before_allocating():
         synthesize(analysis, [(0, 0), (100, 0)], max_seeds=5)
 
 
+def test_lloyd_work_beyond_the_budget_is_refused_before_drawing():
+    """A random fuzz run asked seeds_2d for 10**9 Lloyd iterations, which ran as long as asked."""
+    path = np.array([(0.0, 0.0), (1.0, 0.0)])
+    with pytest.raises(ValueError, match="max_cells"):
+        seeds_2d((0, 1, 0, 1), 5, iterations=10**9)
+    with pytest.raises(ValueError, match="max_cells"):
+        seeds_1d(path, 10, iterations=10**9)
+    with pytest.raises(ValueError, match="max_cells"):
+        seeds_2d((0, 1, 0, 1), 5, iterations=3, max_cells=14)
+    assert len(seeds_2d((0, 1, 0, 1), 5, iterations=3, max_cells=15, rng=0).positions) == 5
+    assert len(seeds_1d(path, 10, iterations=4, max_cells=40, rng=0).arc) == 10
+
+
 def test_ring_neighbourhoods_on_a_chain():
     pointers, neighbours = ring_neighbourhoods(6, [(0, 1), (1, 2), (2, 3), (3, 4), (4, 5)], 2)
     assert neighbours[pointers[2]:pointers[3]].tolist() == [0, 1, 3, 4]

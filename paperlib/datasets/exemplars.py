@@ -240,7 +240,8 @@ def _font_glyph(char: str, font: str) -> Element:
     return Element((Stroke(np.vstack([ring, ring[:1]]), DEFAULT_STROKE_WIDTH),), name=f"{font}:{char}")
 
 
-def _glyph(char: str, font: str, size: float) -> _Glyph:
+def _glyph(char: str, font: str, size: float, name: str = "size") -> _Glyph:
+    """The glyph scaled so that its larger extent is ``size`` (the parameter ``name`` of the caller)."""
     glyph = _font_glyph(char, font)
     xmin, ymin, xmax, ymax = glyph.bounds()
     extent = max(xmax - xmin, ymax - ymin)
@@ -250,7 +251,7 @@ def _glyph(char: str, font: str, size: float) -> _Glyph:
     centre = np.array([(xmin + xmax) / 2, (ymin + ymax) / 2])
     largest = max(float(np.abs(glyph.points - centre).max()), max(stroke.width for stroke in glyph.strokes))
     if not (math.isfinite(scale * largest) and 0.0 < scale * scale < math.inf):  # the pen scales by sqrt(det)
-        raise ValueError(f"size must keep the glyphs' coordinates finite and their area above 0 in floats, "
+        raise ValueError(f"{name} must keep the glyphs' coordinates finite and their area above 0 in floats, "
                          f"got {size!r}")
     element = glyph.transformed(scale * np.eye(2), -scale * centre)
     points = element.points
@@ -298,9 +299,12 @@ def _matrix(value) -> list:
     return np.asarray(value, dtype=np.float64).tolist()
 
 
-def _simulate(beta, gamma, r, hc, categories, chars, sizes, frame, T, font, rng, rotated=False):
-    """Simulate the multitype Strauss hard-core model in the shrunk frame; return glyphs, pattern, truth."""
-    glyphs = [_glyph(c, font, s) for c, s in zip(chars, sizes)]
+def _simulate(beta, gamma, r, hc, categories, chars, sizes, frame, T, font, rng, rotated=False, size_name="size"):
+    """Simulate the multitype Strauss hard-core model in the shrunk frame; return glyphs, pattern, truth.
+
+    ``size_name`` is the caller's parameter that gave ``sizes``, for the message of a size that cannot be drawn.
+    """
+    glyphs = [_glyph(c, font, s, size_name) for c, s in zip(chars, sizes)]
     margin = _margin(glyphs, rotated)
     inner = _shrunk(frame, margin)
     model = MultiStraussHard(beta, gamma=gamma, r=r, hc=hc, categories=categories)
@@ -422,7 +426,8 @@ def two_category_exemplar(
     gamma_m = [[gamma[0], between_gamma], [between_gamma, gamma[1]]]
     r_m = [[r[0], between_r], [between_r, r[1]]]
     hc_m = [[hc[0], between_hc], [between_hc, hc[1]]]
-    glyphs, pattern, truth = _simulate(beta, gamma_m, r_m, hc_m, chars, chars, sizes, frame, T, font, rng)
+    glyphs, pattern, truth = _simulate(beta, gamma_m, r_m, hc_m, chars, chars, sizes, frame, T, font, rng,
+                                       size_name="sizes")
     truth["between"] = between
     description = (f"{chars[0]!r} (gamma {gamma[0]:g}) and {chars[1]!r} (gamma {gamma[1]:g}) glyphs, "
                    f"{between} between categories: bivariate Strauss hard-core process, rmh T={T}")
@@ -487,14 +492,15 @@ def big_small_exemplar(
     if sizes[0] <= sizes[1]:
         raise ValueError(f"sizes must list the big glyph first (sizes[0] > sizes[1]), got {sizes!r}")
     beta = _pair(beta, "beta", positive_number)
-    radii = [math.hypot(*(_glyph(c, font, s).half_extent)) for c, s in zip(chars, sizes)]
+    radii = [math.hypot(*(_glyph(c, font, s, "sizes").half_extent)) for c, s in zip(chars, sizes)]
     defaults = (2 * radii[0], 2 * radii[1], radii[0] + radii[1])
     hcs = []
     for value, default, name in zip((hc_big, hc_small, hc_between), defaults, ("hc_big", "hc_small", "hc_between")):
         hcs.append(default if value is None else positive_number(value, name))
     hc_m = [[hcs[0], hcs[2]], [hcs[2], hcs[1]]]
     frame, T = _frame(window), _steps(T, max_steps)
-    glyphs, pattern, truth = _simulate(beta, 1.0, hc_m, hc_m, chars, chars, sizes, frame, T, font, rng)
+    glyphs, pattern, truth = _simulate(beta, 1.0, hc_m, hc_m, chars, chars, sizes, frame, T, font, rng,
+                                       size_name="sizes")
     description = (f"big {chars[0]!r} (size {sizes[0]:g}) and small {chars[1]!r} (size {sizes[1]:g}) glyphs; "
                    f"hard cores {hcs[0]:.3g} / {hcs[1]:.3g} / between {hcs[2]:.3g}: bivariate hard-core process, "
                    f"rmh T={T}")
@@ -717,7 +723,7 @@ def hatching_exemplar(
     frame, T = _frame(window), _steps(T, max_steps)
     rng = as_generator(rng)
     glyphs, pattern, truth = _simulate([beta], gamma, r, hc, chars, chars, (length,), frame, T, font, rng,
-                                       rotated=True)
+                                       rotated=True, size_name="length")
     angles = angle + rng.normal(0.0, angle_jitter, size=pattern.n) if angle_jitter > 0 else np.full(pattern.n, angle)
     rotations = angles - _principal_angle(glyphs[0].element)
     truth.update(angle=angle, angle_jitter=angle_jitter, angles=angles.tolist())
@@ -787,7 +793,7 @@ def drawn_hatching_exemplar(
     angle, angle_spread = _number(angle, "angle"), _number(angle_spread, "angle_spread", 0.0, 90.0)
     max_attempts = int(_number(max_attempts, "max_attempts", 1))
     frame, rng = _frame(window), as_generator(rng)
-    glyph = _glyph(char, font, length)
+    glyph = _glyph(char, font, length, "length")
     inner = _shrunk(frame, _margin([glyph], rotated=True))
     base = _principal_angle(glyph.element)
     kept_lines, points, angles = [], [], []

@@ -274,9 +274,9 @@ def _min_distance(ink_tone, shape, mark_radius, regime, hard_core=HARD_CORE):
     separate (light and dark) dots; a (low, high) pair of distances when ``hard_core`` is one."""
     if ink_tone <= 0.0:
         return 2.0 * mark_radius
-    mark_area = math.pi * mark_radius * mark_radius  # a product overflows to inf (no marks), where ** raises
+    mark_area = math.pi * mark_radius * mark_radius
     expected_marks = -shape[0] * shape[1] * math.log1p(-min(ink_tone, 0.999)) / mark_area
-    if expected_marks <= 0.0:  # a tone so small for marks so large that the count underflows: as for no ink
+    if expected_marks <= 0.0:  # a subnormal tone (5e-324) whose count underflows to 0: as for no ink
         return 2.0 * mark_radius
     spacing = math.sqrt(shape[0] * shape[1] / expected_marks)
     floor = 0.0 if regime == "merged" else 2.0 * mark_radius

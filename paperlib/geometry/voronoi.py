@@ -38,6 +38,7 @@ import math
 
 import numpy as np
 
+from .._checks import budget, check_budget
 from .strokes import as_points
 
 __all__ = ["lloyd_relaxation"]
@@ -67,6 +68,11 @@ def _region(window):
                          f" and area {region.area:g}")
     shapely.prepare(region)
     return region
+
+
+#: Default budget of :func:`lloyd_relaxation` (``max_cells``): Voronoi cells computed, points times
+#: iterations, 2**22 (about a minute at some 13 microseconds a cell: 40 iterations of 1e5 seeds fit).
+MAX_CELLS = 2**22
 
 
 def _iterations(iterations) -> int:
@@ -105,7 +111,7 @@ def _lloyd_step(points: np.ndarray, region) -> np.ndarray:
     return shapely.get_coordinates(centroids)
 
 
-def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0) -> np.ndarray:
+def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0, max_cells: int = MAX_CELLS) -> np.ndarray:
     """Relax points by Lloyd's method in a window (the seeding of Barla et al. 2006).
 
     At each iteration every point moves to the centroid of its Voronoi cell intersected with
@@ -125,6 +131,9 @@ def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0) 
     tol : float
         Stop early once no point moved by more than ``tol`` in a step (default 0: run all
         ``iterations``).
+    max_cells : int, optional
+        Budget: the most Voronoi cells computed, ``n * iterations`` (default :data:`MAX_CELLS`,
+        2**22); a larger request raises ValueError before the first step.
 
     Returns
     -------
@@ -137,7 +146,7 @@ def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0) 
         If ``points`` is empty, not ``(n, 2)``, holds NaN/inf or repeated points, or has a
         point outside the window; if the window is not a valid polygon of positive area or a
         finite rectangle with ``xmax > xmin`` and ``ymax > ymin``; if ``iterations`` is not an
-        integer >= 0 or ``tol`` is negative.
+        integer >= 0 or ``tol`` is negative; if ``n * iterations`` exceeds ``max_cells``.
 
     Notes
     -----
@@ -167,6 +176,7 @@ def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0) 
         raise ValueError(f"tol must be a number >= 0, got {tol!r}") from None
     if not tol >= 0:
         raise ValueError(f"tol must be a number >= 0, got {tol!r}")
+    check_budget(len(points) * iterations, budget(max_cells, "max_cells"), "max_cells", "Voronoi cells (points x iterations)")
     _check_inside(points, region)
     for _ in range(iterations):
         moved = _lloyd_step(points, region)

@@ -90,6 +90,11 @@ _MAX_LINES = 10_000
 _MAX_LEAVES = 2_000_000
 """Safety cap on the number of leaves when only a coverage target is given (never hang)."""
 
+#: Default budget of :func:`dead_leaves`, :func:`voronoi_tessellation` and :func:`poisson_line_tessellation`
+#: (``max_pixels``): the most image pixels, 2**26 (an 8192 x 8192 image, 1.5 GiB as RGB floats), checked
+#: before anything is drawn. Raise it with the ``max_pixels`` keyword.
+MAX_PIXELS = 2**26
+
 
 # ---------------------------------------------------------------------------------------------
 # input checks
@@ -109,15 +114,18 @@ def _count(value, name: str, minimum: int) -> int:
     return number
 
 
-def _check_shape(shape) -> tuple[int, int]:
-    """``(H, W)`` as two positive ints, or a ValueError."""
+def _check_shape(shape, max_pixels=None) -> tuple[int, int]:
+    """``(H, W)`` as two positive ints, or a ValueError; with ``max_pixels``, a ValueError above that budget."""
     try:
         items = tuple(shape)
     except TypeError:
         raise ValueError(f"shape must be a pair (height, width), got {shape!r}") from None
     if len(items) != 2:
         raise ValueError(f"shape must be a pair (height, width), got {shape!r}")
-    return _count(items[0], "shape[0] (height)", 1), _count(items[1], "shape[1] (width)", 1)
+    height, width = _count(items[0], "shape[0] (height)", 1), _count(items[1], "shape[1] (width)", 1)
+    if max_pixels is not None:
+        check_budget(height * width, budget(max_pixels, "max_pixels"), "max_pixels", "image pixels")
+    return height, width
 
 
 def _check_palette(palette) -> np.ndarray:
@@ -421,7 +429,8 @@ def _leaf_batch(rng, size, height, width, r_min, r_max, alpha, n_colours):
 
 
 def dead_leaves(shape, *, n_leaves=None, coverage_target=None, r_min, r_max, alpha=3.0, palette=None,
-                background=(1.0, 1.0, 1.0), rng=None, return_labels=False, return_geometry=False):
+                background=(1.0, 1.0, 1.0), rng=None, return_labels=False, return_geometry=False,
+                max_pixels: int = MAX_PIXELS):
     """Scaling dead leaves model: discs with power-law radii, each new leaf falling BEHIND the others.
 
     Leaves are discs whose radius has density proportional to r^(-alpha) on [r_min, r_max] (alpha = 3
@@ -462,6 +471,9 @@ def dead_leaves(shape, *, n_leaves=None, coverage_target=None, r_min, r_max, alp
     return_geometry : bool
         Also return the ``(k, 3)`` array of the leaves used, rows (x, y, r) in drop order (row i is
         leaf i of the labels), and their ``(k,)`` palette indices, as a pair.
+    max_pixels : int, optional
+        Budget: the most image pixels ``H * W`` (default :data:`MAX_PIXELS`, 2**26), checked before
+        anything is drawn.
 
     Returns
     -------
@@ -477,7 +489,7 @@ def dead_leaves(shape, *, n_leaves=None, coverage_target=None, r_min, r_max, alp
     Alvarez et al. 2015, section 2.4 and Fig. 5 (left); Alvarez, Gousseau, Morel 1999 (ref. [1]);
     Lee, Mumford, Huang 2001 (ref. [27]).
     """
-    height, width = _check_shape(shape)
+    height, width = _check_shape(shape, max_pixels)
     r_min, r_max, alpha = _check_radii(r_min, r_max, alpha)
     colours = _check_palette(palette)
     background = _check_colour(background, "background")
@@ -524,7 +536,8 @@ def _stack_leaves(batches) -> tuple[np.ndarray, np.ndarray]:
 # ---------------------------------------------------------------------------------------------
 
 
-def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_labels=False, return_geometry=False):
+def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_labels=False, return_geometry=False,
+                         max_pixels: int = MAX_PIXELS):
     """Poisson-Voronoi tessellation of the image: ``n_cells`` uniform centres, one palette colour per cell.
 
     Centres are independent and uniform in the image rectangle [0, W] x [0, H] (a binomial process,
@@ -546,6 +559,9 @@ def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_label
         Also return the ``(H, W)`` int64 index of each pixel's cell.
     return_geometry : bool
         Also return the ``(n_cells, 2)`` centres (x, y) and their ``(n_cells,)`` palette indices.
+    max_pixels : int, optional
+        Budget: the most image pixels ``H * W`` (default :data:`MAX_PIXELS`, 2**26), checked before
+        anything is drawn.
 
     Returns
     -------
@@ -556,7 +572,7 @@ def voronoi_tessellation(shape, n_cells, *, palette=None, rng=None, return_label
     ----------
     Alvarez et al. 2015, section 2.4 and Fig. 5 (middle); Chiu et al. 2013 (ref. [4]), section 9.7.
     """
-    height, width = _check_shape(shape)
+    height, width = _check_shape(shape, max_pixels)
     n_cells = _count(n_cells, "n_cells", 1)
     colours = _check_palette(palette)
     rng = as_generator(rng)
@@ -624,7 +640,7 @@ def _dense_labels(keys: np.ndarray) -> np.ndarray:
 
 
 def poisson_line_tessellation(shape, intensity, *, palette=None, rng=None, return_labels=False,
-                              return_geometry=False):
+                              return_geometry=False, max_pixels: int = MAX_PIXELS):
     """Isotropic Poisson line tessellation of the image, each cell coloured independently.
 
     The line process is stationary and isotropic with the normalisation of Chiu et al.: the number of
@@ -648,6 +664,9 @@ def poisson_line_tessellation(shape, intensity, *, palette=None, rng=None, retur
     return_geometry : bool
         Also return the ``(m, 3)`` lines hitting the image, rows (a, b, p) for a x + b y = p with
         (a, b) a unit normal, and the ``(n_cells,)`` palette indices of the cells.
+    max_pixels : int, optional
+        Budget: the most image pixels ``H * W`` (default :data:`MAX_PIXELS`, 2**26), checked before
+        anything is drawn.
 
     Returns
     -------
@@ -659,7 +678,7 @@ def poisson_line_tessellation(shape, intensity, *, palette=None, rng=None, retur
     Alvarez et al. 2015, section 2.4 and Fig. 5 (middle); Chiu et al. 2013 (ref. [4]), sections 8.2
     (Poisson line process, Cauchy-Crofton) and 9.4 (Poisson line tessellation).
     """
-    height, width = _check_shape(shape)
+    height, width = _check_shape(shape, max_pixels)
     intensity = positive_number(intensity, "intensity", allow_zero=True)
     expected_lines = intensity * 2.0 * (height + width) / math.pi
     if expected_lines > _MAX_LINES:
@@ -772,9 +791,9 @@ def _chaos_game(linear, offsets, choices, start):
 #: Default budget of :func:`ifs_chaos_game` and :func:`ifs_fractal`: the most chaos-game points (5e7, 1.2 GB of
 #: points and choices). Raise it with the ``max_points`` keyword.
 MAX_IFS_POINTS = 50_000_000
-#: Default budget of :func:`ifs_fractal`: the most image pixels (2**26, a 8192 x 8192 image). Raise it with the
-#: ``max_pixels`` keyword.
-MAX_IFS_PIXELS = 2**26
+#: Default budget of :func:`ifs_fractal`: the most image pixels (2**26, a 8192 x 8192 image, as :data:`MAX_PIXELS`).
+#: Raise it with the ``max_pixels`` keyword.
+MAX_IFS_PIXELS = MAX_PIXELS
 
 
 def ifs_chaos_game(maps=None, *, n_points=200_000, rng=None,
@@ -880,8 +899,7 @@ def ifs_fractal(shape, maps=None, *, n_points=200_000, mode="binary", margin=2.0
     ----------
     Alvarez et al. 2015, section 2.4 and Fig. 5 (right); Barnsley 1988.
     """
-    height, width = _check_shape(shape)
-    check_budget(height * width, budget(max_pixels, "max_pixels"), "max_pixels", "image pixels")
+    height, width = _check_shape(shape, max_pixels)
     check_choice(mode, ("binary", "density"), "mode")
     margin = positive_number(margin, "margin", allow_zero=True)
     if 2.0 * margin >= min(height, width):

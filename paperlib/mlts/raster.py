@@ -355,7 +355,14 @@ def _check_canvas(canvas) -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def coverage(vertices, shape, *, samples: int = 4, clip=None) -> tuple[int, int, np.ndarray]:
+#: Default budget of :func:`render_polygons` and :func:`coverage`: the most anti-aliasing samples
+#: ``H * W * samples**2`` of one image (of one polygon's box for coverage), 2**27 (as
+#: :data:`paperlib.mlts.render.MAX_RENDER_SAMPLES`). Raise it with the ``max_samples`` keyword.
+MAX_IMAGE_SAMPLES = 2**27
+
+
+def coverage(vertices, shape, *, samples: int = 4, clip=None,
+             max_samples: int = MAX_IMAGE_SAMPLES) -> tuple[int, int, np.ndarray]:
     """Anti-aliased coverage of one polygon over the pixels of an image.
 
     Parameters
@@ -369,6 +376,9 @@ def coverage(vertices, shape, *, samples: int = 4, clip=None) -> tuple[int, int,
         its sub-pixels, so coverage values are multiples of ``1 / samples**2``.
     clip : array_like, shape (m, 2), optional
         Second polygon: only samples inside both polygons count (see :func:`paint`).
+    max_samples : int, optional
+        Budget: the most sub-pixel samples tested, ``h * w * samples**2`` over the polygon's box in the
+        image (default :data:`MAX_IMAGE_SAMPLES`, 2**27), checked before the mask is allocated.
 
     Returns
     -------
@@ -390,6 +400,8 @@ def coverage(vertices, shape, *, samples: int = 4, clip=None) -> tuple[int, int,
                                          height, width)
     if row1 <= row0 or col1 <= col0:
         return 0, 0, np.zeros((0, 0))
+    check_budget((row1 - row0) * (col1 - col0) * samples**2, budget(max_samples, "max_samples"), "max_samples",
+                 "sub-pixel samples (box pixels x samples^2)")
     mask = _coverage_kernel(polygon, clip_polygon, row0, row1, col0, col1, samples)
     return row0, col0, mask
 
@@ -450,10 +462,6 @@ def paint(canvas, polygons, colors, *, alphas=None, lights=None, light_height=No
                   light_points, heights, lit, samples)
     return canvas
 
-
-#: Default budget of :func:`render_polygons`: the most anti-aliasing samples ``H * W * samples**2`` of one
-#: image, 2**27 (as :data:`paperlib.mlts.render.MAX_RENDER_SAMPLES`). Raise it with the ``max_samples`` keyword.
-MAX_IMAGE_SAMPLES = 2**27
 
 
 def render_polygons(polygons, colors, shape, *, background=(1.0, 1.0, 1.0), alphas=None, lights=None,

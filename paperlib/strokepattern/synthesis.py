@@ -55,6 +55,7 @@ from scipy import sparse
 from scipy.sparse.csgraph import breadth_first_order
 
 from ..geometry import Element, Stroke, lloyd_relaxation
+from ..geometry.voronoi import MAX_CELLS
 from .._checks import as_generator, budget, check_budget, instance_of, point_array, positive_number
 from ._kernels import BEST, CLOSE, RANDOM, grow
 from .analysis import (
@@ -153,7 +154,8 @@ def _points_on_path(path: np.ndarray, arc: np.ndarray) -> np.ndarray:
 MAX_SEEDS = 100_000
 
 
-def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS) -> Seeds:
+def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS,
+             max_cells: int = MAX_CELLS) -> Seeds:
     """N seeds along a polyline by Lloyd's method in arc length (section 3.2), chained in path order.
 
     The random start draws one uniform position in each of n equal arc-length strata: a random start without
@@ -171,6 +173,10 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_
         Source of randomness for the start.
     max_seeds : int, optional
         Budget: the most seeds (default :data:`MAX_SEEDS`); a larger ``n`` raises ValueError.
+    max_cells : int, optional
+        Budget: the most Lloyd cells computed, ``n * iterations`` (default
+        :data:`paperlib.geometry.voronoi.MAX_CELLS`, 2**22); a larger request raises ValueError
+        before anything is drawn.
 
     Returns
     -------
@@ -179,9 +185,10 @@ def seeds_1d(path, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_
     """
     path, length = _extent(path, 1)
     n = _seed_count(n, max_seeds)
+    iterations = _lloyd_iterations(iterations, n, max_cells)
     rng = as_generator(rng)
     start = (np.arange(n) + rng.random(n)) * (length / n)
-    arc = _lloyd_1d(start, length, _iterations(iterations))
+    arc = _lloyd_1d(start, length, iterations)
     return Seeds(_points_on_path(path, arc), path_frames(path, arc), chain_edges(np.arange(n)), arc)
 
 
@@ -198,7 +205,8 @@ def _uniform_in(region, n: int, rng) -> np.ndarray:
     return kept[:n]
 
 
-def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS) -> Seeds:
+def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, max_seeds: int = MAX_SEEDS,
+             max_cells: int = MAX_CELLS) -> Seeds:
     """N seeds in a region by Lloyd's method (Voronoi cells clipped to the region, section 3.2).
 
     Neighbours are the unskewed Delaunay edges (no triangle angle above 2 pi / 3), as in the analysis.
@@ -215,6 +223,10 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, ma
         Source of randomness for the uniform start.
     max_seeds : int, optional
         Budget: the most seeds (default :data:`MAX_SEEDS`); a larger ``n`` raises ValueError.
+    max_cells : int, optional
+        Budget: the most Lloyd cells computed, ``n * iterations`` (default
+        :data:`paperlib.geometry.voronoi.MAX_CELLS`, 2**22); a larger request raises ValueError
+        before anything is drawn.
 
     Returns
     -------
@@ -225,8 +237,9 @@ def seeds_2d(region, n: int, *, iterations: int = LLOYD_ITERATIONS, rng=None, ma
     n = _seed_count(n, max_seeds)
     if n < 3:
         raise ValueError(f"a 2D synthesis needs at least 3 seeds, got {n}: enlarge the region")
+    iterations = _lloyd_iterations(iterations, n, max_cells)
     rng = as_generator(rng)
-    positions = lloyd_relaxation(_uniform_in(region, n, rng), region, _iterations(iterations))
+    positions = lloyd_relaxation(_uniform_in(region, n, rng), region, iterations, max_cells=max_cells)
     return Seeds(positions, np.zeros(n), unskewed_delaunay_edges(positions), np.full(n, np.nan))
 
 
@@ -243,9 +256,11 @@ def _seed_count(n, max_seeds) -> int:
     return n
 
 
-def _iterations(iterations) -> int:
+def _lloyd_iterations(iterations, n: int, max_cells) -> int:
+    """The number of Lloyd iterations, checked against the budget on cells (``n * iterations``)."""
     if isinstance(iterations, bool) or not isinstance(iterations, (int, np.integer)) or iterations < 0:
         raise ValueError(f"iterations must be an integer >= 0, got {iterations!r}")
+    check_budget(n * int(iterations), budget(max_cells, "max_cells"), "max_cells", "Lloyd cells (seeds x iterations)")
     return int(iterations)
 
 
