@@ -79,6 +79,11 @@ QUALITIES = ("ci", "paper")
 STATS_FILE = "stats.json"
 #: Key of ``stats.json`` listing the paperlib numba kernels the run used (:mod:`paperlib._kernels_used`).
 KERNELS_KEY = "numba_kernels"
+#: Packages of optional comparisons (the ``requires`` of expected statistics), and the key of ``stats.json``
+#: recording which of them the run could import: an entry that requires one is checked when the *run* had
+#: it, so the verdicts read from a run do not depend on the packages of the machine that reads it.
+OPTIONAL_PACKAGES = ("plenoptic",)
+OPTIONAL_PACKAGES_KEY = "optional_packages"
 TIME_PREFIX = "time_"
 CHECK_COLUMNS = ["notebook", "statistic", "value", "expected", "tolerance", "kind", "source", "status", "ok", "reason"]
 #: Row statuses that do not fail a run: within tolerance, a paper miss recorded as expected, a wall time,
@@ -176,7 +181,8 @@ def start(out_dir, *, seed, quality) -> Path:
     _current_run = _Run(out_dir, out_dir.name)
     _write_json(
         out_dir / STATS_FILE,
-        {"notebook": out_dir.name, "seed": int(seed), "quality": quality, "statistics": {}},
+        {"notebook": out_dir.name, "seed": int(seed), "quality": quality, "statistics": {},
+         OPTIONAL_PACKAGES_KEY: {name: importlib.util.find_spec(name) is not None for name in OPTIONAL_PACKAGES}},
     )
     return out_dir
 
@@ -604,7 +610,7 @@ def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dic
     except ValueError as exc:
         return [_row(notebook, "", reason=str(exc))]
     recorded = data["statistics"]
-    rows = [_check_statistic(notebook, statistic, spec, recorded, data.get("quality"))
+    rows = [_check_statistic(notebook, statistic, spec, recorded, data.get("quality"), data.get(OPTIONAL_PACKAGES_KEY))
             for statistic, spec in specs.items()]
     for statistic in (name for name in recorded if name not in specs):  # recorded order: INDEX.md is reproducible
         if statistic.startswith(TIME_PREFIX):
@@ -615,15 +621,25 @@ def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dic
     return rows
 
 
-def _check_statistic(notebook: str, statistic: str, spec: dict, recorded: dict, quality: str | None) -> dict:
-    """One row: pass, FAIL, xfail (a paper claim we miss, as expected) or XPASS (the miss is gone)."""
+def _run_had_package(package: str, packages: dict | None, recorded: bool) -> bool:
+    """Whether the run could import ``package``: as it recorded (:data:`OPTIONAL_PACKAGES_KEY`); a run
+    from before that record had it when it recorded the statistic at all."""
+    if isinstance(packages, dict) and package in packages:
+        return bool(packages[package])
+    return recorded
+
+
+def _check_statistic(notebook: str, statistic: str, spec: dict, recorded: dict, quality: str | None,
+                     packages: dict | None) -> dict:
+    """One row: pass, FAIL, xfail (a paper claim we miss, as expected), XPASS (the miss is gone) or skipped
+    (an optional comparison whose package the run did not have)."""
     resolved = _resolve_spec(spec, quality)
     expected_text, tolerance = _describe(resolved)
     row = dict(notebook=notebook, statistic=statistic, expected=expected_text, tolerance=tolerance,
                kind=spec["kind"], source=spec["source"])
     required = spec.get("requires")
-    if required is not None and importlib.util.find_spec(required) is None:
-        return _row(**row, value=recorded.get(statistic), reason=f"not checked: {required} is not installed",
+    if required is not None and not _run_had_package(required, packages, statistic in recorded):
+        return _row(**row, value=recorded.get(statistic), reason=f"not checked: the run had no {required}",
                     status="skipped")
     if statistic not in recorded:
         return _row(**row, reason="expected but not recorded")

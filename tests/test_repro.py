@@ -1,8 +1,10 @@
 """paperlib.repro: recording statistics and figures, checking tolerances."""
 
+import importlib.util
 import json
 import math
 import re
+from pathlib import Path
 
 import matplotlib
 
@@ -29,7 +31,9 @@ def test_start_writes_fresh_stats(run_dir):
     repro.record("a", 1)
     repro.start(run_dir, seed=4, quality="paper")
     data = repro.load_stats(run_dir / "stats.json")
-    assert data == {"notebook": "demo_nb", "seed": 4, "quality": "paper", "statistics": {}}
+    assert data == {"notebook": "demo_nb", "seed": 4, "quality": "paper", "statistics": {},
+                    repro.OPTIONAL_PACKAGES_KEY: {name: importlib.util.find_spec(name) is not None
+                                                  for name in repro.OPTIONAL_PACKAGES}}
 
 
 def test_record_converts_numpy_and_keeps_order(run_dir):
@@ -275,28 +279,52 @@ def test_outputs_are_world_readable(run_dir):
     assert (run_dir / "stats.json").stat().st_mode & 0o777 == 0o644
 
 
-def test_requires_skips_an_optional_comparison_whose_package_is_absent(tmp_path):
-    """An entry with ``requires = "<package>"`` is checked only where that package is installed."""
+def test_requires_checks_an_optional_comparison_where_the_run_had_its_package(tmp_path):
+    """An entry with ``requires = "<package>"`` is checked when the run that recorded it could import the package,
+    whatever the machine that reads the run has (a rebuilt INDEX.md must not depend on the reader's packages)."""
     folder = tmp_path / "figures" / "nb"
     folder.mkdir(parents=True)
-    (folder / "stats.json").write_text(json.dumps({"quality": "ci", "statistics": {"a": 1.0}}))
     expected = tmp_path / "expected.toml"
     expected.write_text(
         '[nb.a]\nkind = "truth"\nvalue = 1.0\nsource = "by construction"\n\n'
-        '[nb.b]\nkind = "truth"\nvalue = 2.0\nrequires = "no_such_package_here"\nsource = "by construction"\n\n'
-        '[nb.c]\nkind = "truth"\nvalue = 3.0\nrequires = "json"\nsource = "by construction"\n'
+        '[nb.b]\nkind = "truth"\nvalue = 2.0\nrequires = "no_such_package_here"\nsource = "by construction"\n'
     )
-    table = repro.check_stats(tmp_path / "figures", expected).set_index("statistic")
-    assert table.loc["a", "status"] == "pass"
-    assert table.loc["b", "status"] == "skipped" and table.loc["b", "ok"]
-    assert table.loc["c", "status"] == "FAIL" and "not recorded" in table.loc["c", "reason"]  # json is installed
-    # recorded or not: a run without the package records what it could not do (kim2009_fig06's ps_available)
-    (folder / "stats.json").write_text(json.dumps({"quality": "ci", "statistics": {"a": 1.0, "b": 5.0}}))
-    table = repro.check_stats(tmp_path / "figures", expected).set_index("statistic")
-    assert table.loc["b", "status"] == "skipped" and table.loc["b", "ok"]
+
+    def status(statistics, packages=None):
+        data = {"quality": "ci", "statistics": statistics}
+        if packages is not None:
+            data[repro.OPTIONAL_PACKAGES_KEY] = packages
+        (folder / "stats.json").write_text(json.dumps(data))
+        table = repro.check_stats(tmp_path / "figures", expected).set_index("statistic")
+        assert table.loc["a", "status"] == "pass" and table.loc["b", "ok"] == (table.loc["b", "status"] in ("pass", "skipped"))
+        return table.loc["b", "status"]
+
+    without, with_it = {"no_such_package_here": False}, {"no_such_package_here": True}
+    # a run without the package records what it could not do (kim2009_fig06's ps_available = false): skipped
+    assert status({"a": 1.0, "b": 5.0}, without) == "skipped"
+    assert status({"a": 1.0}, without) == "skipped"
+    # a run with it is checked, here where the package is absent
+    assert status({"a": 1.0, "b": 2.0}, with_it) == "pass"
+    assert status({"a": 1.0, "b": 5.0}, with_it) == "FAIL"
+    assert status({"a": 1.0}, with_it) == "FAIL"
+    # a run from before the record: it had the package if it recorded the statistic
+    assert status({"a": 1.0, "b": 2.0}) == "pass"
+    assert status({"a": 1.0}) == "skipped"
     expected.write_text('[nb.a]\nkind = "truth"\nvalue = 1.0\nrequires = "not a package"\nsource = "by construction"\n')
     with pytest.raises(ValueError, match="requires"):
         repro.load_expected(expected)
+
+
+def test_a_run_records_which_optional_packages_it_can_import(run_dir):
+    data = json.loads((run_dir / "stats.json").read_text())
+    assert set(data[repro.OPTIONAL_PACKAGES_KEY]) == set(repro.OPTIONAL_PACKAGES)
+    assert all(isinstance(v, bool) for v in data[repro.OPTIONAL_PACKAGES_KEY].values())
+
+
+def test_every_required_package_is_one_a_run_records():
+    expected = repro.load_expected(Path(__file__).resolve().parents[1] / "tests" / "expected_stats.toml")
+    required = {spec["requires"] for specs in expected.values() for spec in specs.values() if "requires" in spec}
+    assert required and required <= set(repro.OPTIONAL_PACKAGES)
 
 
 def test_statistics_without_an_entry_keep_their_recorded_order(tmp_path):
