@@ -9,6 +9,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from paperlib.pointprocess import (
@@ -145,6 +146,38 @@ def test_same_seed_same_test_in_one_process_or_two():
     kwargs = dict(nsim=5, r=np.linspace(0, 0.1, 11), fun_kwargs={"correction": "isotropic"}, rng=7)
     one, two = dclf_test(observed, Lest, workers=1, **kwargs), dclf_test(observed, Lest, workers=2, **kwargs)
     assert one.statistic == two.statistic and np.array_equal(one.simulated, two.simulated)
+
+
+@pytest.mark.parametrize("null", ["csr", "model", "patterns"])
+def test_an_envelope_with_saved_curves_gives_the_tests_of_its_simulations(null):
+    """spatstat's dclf.test(E) / mad.test(E) for E <- envelope(X, savefuns = TRUE): one set of simulations, both tests,
+    equal bit for bit to the tests simulating the same curves themselves."""
+    observed = rpoispp(70, UNIT, rng=8)
+    simulations = dict(csr={}, model={"model": StraussHard(70.0, 0.3, r=0.06, hc=0.01, closed=False),
+                                      "simulate_kwargs": {"T": 5_000}},
+                       patterns={"patterns": [rpoispp(70, UNIT, rng=100 + k) for k in range(9)]})[null]
+    curves = dict(r=np.linspace(0, 0.1, 21), fun_kwargs={"correction": "isotropic"}, column="iso", rng=9, workers=1,
+                  **simulations)
+    saved = envelope(observed, Lest, nsim=9, savefuns=True, **curves)
+    assert saved.attrs["null"] == null and len(saved.attrs["simulated"]) == 9
+    for test in (dclf_test, mad_test):
+        direct, from_envelope = test(observed, Lest, nsim=9, **curves), test(saved)
+        assert from_envelope.statistic == direct.statistic and from_envelope.p_value == direct.p_value
+        assert np.array_equal(from_envelope.simulated, direct.simulated) and from_envelope.reference == direct.reference
+    assert "simulated" not in envelope(observed, Lest, nsim=9, **curves).attrs
+    assert len(pd.concat([saved, saved])) == 2 * len(saved)  # the saved curves do not break pandas' attrs
+
+
+def test_an_envelope_must_have_saved_its_curves_and_comes_alone():
+    observed = rpoispp(40, UNIT, rng=10)
+    options = dict(r=np.linspace(0, 0.1, 11), nsim=5, rng=11, workers=1)
+    with pytest.raises(ValueError, match="savefuns=True"):
+        dclf_test(envelope(observed, Lest, **options))
+    saved = envelope(observed, Lest, savefuns=True, **options)
+    with pytest.raises(ValueError, match="fun, nsim must not be given"):
+        mad_test(saved, Lest, nsim=5)
+    with pytest.raises(TypeError, match="savefuns"):
+        envelope(observed, Lest, savefuns="yes", **options)
 
 
 def test_repr_names_the_test():

@@ -132,7 +132,8 @@ def envelope(
     fun,
     *,
     model: MultiStraussHard | None = None,
-    nsim: int = DEFAULT_NSIM,
+    patterns=None,
+    nsim: int | None = None,
     nrank: int = 1,
     kind: str = "pointwise",
     r=None,
@@ -143,6 +144,7 @@ def envelope(
     client=None,
     workers=None,
     progress: bool = False,
+    savefuns: bool = False,
 ) -> pd.DataFrame:
     """Pointwise or global simulation envelope of a summary function.
 
@@ -158,8 +160,10 @@ def envelope(
     model : MultiStraussHard, optional
         Null model simulated with :func:`~paperlib.pointprocess.simulate.rmh` in the
         observed window. Default: CSR with the observed intensity of each type.
-    nsim : int
-        Number of simulations.
+    patterns : sequence of PointPattern, optional
+        Simulated patterns to use instead (spatstat's ``simulate = <list>``); not with ``model``.
+    nsim : int, optional
+        Number of simulations (default 99, spatstat's, or all the ``patterns``).
     nrank : int
         Rank of the envelope: pointwise, the ``nrank``-th smallest and largest
         simulated value at each r (two-sided significance ``2 nrank / (nsim + 1)``);
@@ -179,22 +183,30 @@ def envelope(
         Local processes (default: all CPUs; 1 runs in this process).
     progress : bool
         Show a progress bar.
+    savefuns : bool
+        Keep the simulated curves in the result (spatstat's ``savefuns``), so that
+        :func:`~paperlib.pointprocess.gof.dclf_test` and :func:`~paperlib.pointprocess.gof.mad_test`
+        can test the observed pattern against them without simulating again.
 
     Returns
     -------
     pandas.DataFrame
         Columns ``r``, ``obs``, ``theo``, ``lo``, ``hi``, ``mean`` (mean of the
-        simulations); ``attrs`` hold ``nsim``, ``nrank``, ``kind``, ``column`` and the
-        significance level ``alpha``.
+        simulations); ``attrs`` hold ``nsim``, ``nrank``, ``kind``, ``column``, the
+        significance level ``alpha`` and ``null`` (``"csr"``, ``"model"`` or ``"patterns"``); with
+        ``savefuns``, ``attrs["simulated"]`` holds the ``nsim`` curves, as nested lists (an array
+        would break pandas' comparison of attrs).
     """
     check_choice(kind, _KINDS, "kind")
-    nsim = _checked_nsim(nsim, None)
+    if not isinstance(savefuns, (bool, np.bool_)):
+        raise TypeError(f"savefuns must be True or False, got {savefuns!r}")
+    nsim = _checked_nsim(nsim, _checked_patterns(patterns))
     if isinstance(nrank, bool) or not isinstance(nrank, (int, np.integer)) or nrank < 1:
         raise ValueError(f"nrank must be a positive integer, got {nrank!r}")
     if 2 * nrank > nsim:
         raise ValueError(f"nrank={nrank} needs at least {2 * nrank} simulations, got nsim={nsim}")
     observed_values, column, simulated = _simulated_curves(
-        observed, fun, model=model, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
+        observed, fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
         simulate_kwargs=simulate_kwargs, rng=rng, client=client, workers=workers, progress=progress)
     r = observed_values["r"].to_numpy()
     theo = observed_values["theo"].to_numpy()
@@ -204,7 +216,10 @@ def envelope(
          "mean": simulated.mean(axis=0)}
     )
     alpha = 2 * nrank / (nsim + 1) if kind == "pointwise" else nrank / (nsim + 1)
-    result.attrs.update(nsim=nsim, nrank=nrank, kind=kind, column=column, alpha=alpha)
+    null = "csr" if model is None and patterns is None else "model" if patterns is None else "patterns"
+    result.attrs.update(nsim=nsim, nrank=nrank, kind=kind, column=column, alpha=alpha, null=null)
+    if savefuns:
+        result.attrs["simulated"] = simulated.tolist()
     return result
 
 

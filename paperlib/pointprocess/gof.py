@@ -49,11 +49,11 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+import pandas as pd
 
 from paperlib._checks import check_choice
 
 from .envelope import _simulated_curves
-from .pattern import PointPattern
 
 __all__ = ["GlobalTest", "dclf_test", "mad_test"]
 
@@ -111,8 +111,13 @@ class GlobalTest:
 _PARAMETERS = """
     Parameters
     ----------
-    observed : PointPattern
-        The pattern tested; under CSR it fixes the window and the intensity of each type.
+    observed : PointPattern or pandas.DataFrame
+        The pattern tested; under CSR it fixes the window and the intensity of each type. Or
+        an envelope made with ``savefuns=True`` (:func:`~paperlib.pointprocess.envelope.envelope`),
+        tested against the curves it kept, as spatstat's ``dclf.test(E)``: one set of simulations
+        serves both tests. Then ``fun`` and the options that make curves (``model``, ``patterns``,
+        ``nsim``, ``r``, ``column``, ``fun_kwargs``, ``simulate_kwargs``, ``client``, ``workers``,
+        ``progress``) are not given, and ``rng`` only draws ties.
     fun : callable
         A summary function ``fun(pattern, r=r, **fun_kwargs) -> DataFrame`` with columns
         ``r``, ``theo`` and estimates (:func:`~paperlib.pointprocess.summary.Lest`, ``Kest``,
@@ -169,14 +174,14 @@ _PARAMETERS = """
 """
 
 
-def dclf_test(observed: PointPattern, fun, *, model=None, patterns=None, nsim=None, r=None, column=None,
+def dclf_test(observed, fun=None, *, model=None, patterns=None, nsim=None, r=None, column=None,
               rinterval=None, alternative: str = "two.sided", clamp: bool = False, leaveout: int = 1,
               use_theory=None, ties: str = "conservative", fun_kwargs=None, simulate_kwargs=None, rng=None,
               client=None, workers=None, progress: bool = False) -> GlobalTest:
     return _global_test(2, **locals())
 
 
-def mad_test(observed: PointPattern, fun, *, model=None, patterns=None, nsim=None, r=None, column=None,
+def mad_test(observed, fun=None, *, model=None, patterns=None, nsim=None, r=None, column=None,
              rinterval=None, alternative: str = "two.sided", clamp: bool = False, leaveout: int = 1,
              use_theory=None, ties: str = "conservative", fun_kwargs=None, simulate_kwargs=None, rng=None,
              client=None, workers=None, progress: bool = False) -> GlobalTest:
@@ -211,16 +216,25 @@ mad_test.__doc__ = """Maximum absolute deviation test of a point process model (
 def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, rinterval, alternative, clamp,
                  leaveout, use_theory, ties, fun_kwargs, simulate_kwargs, rng, client, workers,
                  progress) -> GlobalTest:
-    if not callable(fun):
-        raise TypeError(f"fun must be a summary function such as Lest, got {type(fun).__name__} {fun!r:.40}")
     _check_options(alternative, clamp, leaveout, use_theory, ties)
-    observed_values, column, simulated = _simulated_curves(
-        observed, fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
-        simulate_kwargs=simulate_kwargs, rng=rng, client=client, workers=workers, progress=progress,
-        desc="dclf_test" if exponent == 2 else "mad_test")
+    if isinstance(observed, pd.DataFrame):
+        given = {name: value for name, value in dict(
+            fun=fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
+            simulate_kwargs=simulate_kwargs, client=client, workers=workers).items() if value is not None}
+        if progress:
+            given["progress"] = progress
+        observed_values, column, simulated, csr = _saved_curves(observed, given)
+    else:
+        if not callable(fun):
+            raise TypeError(f"fun must be a summary function such as Lest, got {type(fun).__name__} {fun!r:.40}")
+        observed_values, column, simulated = _simulated_curves(
+            observed, fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
+            simulate_kwargs=simulate_kwargs, rng=rng, client=client, workers=workers, progress=progress,
+            desc="dclf_test" if exponent == 2 else "mad_test")
+        csr = model is None and patterns is None
     r, obs = observed_values["r"].to_numpy(), observed_values[column].to_numpy()
     if use_theory is None:
-        use_theory = model is None and patterns is None and "theo" in observed_values
+        use_theory = csr and "theo" in observed_values
     if use_theory and "theo" not in observed_values:
         raise ValueError("use_theory=True but fun gives no theoretical column 'theo'")
     if use_theory:
@@ -237,6 +251,25 @@ def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, r
     return GlobalTest("DCLF" if exponent == 2 else "MAD", float(t_obs), _p_value(t_obs, t_sim, ties, rng), n,
                       interval, t_sim, column, alternative, "theoretical" if use_theory else "sample mean",
                       leaveout)
+
+
+def _saved_curves(envelope: pd.DataFrame, given: dict):
+    """The observed curve, its column, the simulated curves and whether the null was CSR, from an envelope
+    made with ``savefuns=True``; ``given``: the curve-making options passed besides (an error)."""
+    if given:
+        raise ValueError(f"an envelope carries its curves: {', '.join(sorted(given))} must not be given with it")
+    missing = {"r", "obs", "theo"} - set(envelope.columns)
+    if missing or "simulated" not in envelope.attrs:
+        raise ValueError("observed must be a PointPattern or an envelope made with savefuns=True "
+                         f"(columns r, obs, theo and attrs['simulated']); got columns {list(envelope.columns)[:8]} "
+                         f"and attrs {sorted(envelope.attrs)[:8]}")
+    simulated = np.asarray(envelope.attrs["simulated"], dtype=float)
+    if simulated.ndim != 2 or simulated.shape[1] != len(envelope) or len(simulated) < 1:
+        raise ValueError(f"the envelope's saved curves have shape {simulated.shape}, expected (nsim, {len(envelope)})")
+    column = envelope.attrs.get("column", "obs")
+    observed_values = pd.DataFrame({"r": envelope["r"].to_numpy(), "theo": envelope["theo"].to_numpy(),
+                                    column: envelope["obs"].to_numpy()})
+    return observed_values, column, simulated, envelope.attrs.get("null") == "csr"
 
 
 def _check_options(alternative, clamp, leaveout, use_theory, ties) -> None:
