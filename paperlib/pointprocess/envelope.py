@@ -23,7 +23,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from paperlib._checks import check_choice
+from paperlib._checks import check_choice, check_flag
 from paperlib.parallel import run_many
 
 from .models import MultiStraussHard
@@ -198,8 +198,7 @@ def envelope(
         would break pandas' comparison of attrs).
     """
     check_choice(kind, _KINDS, "kind")
-    if not isinstance(savefuns, (bool, np.bool_)):
-        raise TypeError(f"savefuns must be True or False, got {savefuns!r}")
+    savefuns = check_flag(savefuns, "savefuns")
     nsim = _checked_nsim(nsim, _checked_patterns(patterns))
     if isinstance(nrank, bool) or not isinstance(nrank, (int, np.integer)) or nrank < 1:
         raise ValueError(f"nrank must be a positive integer, got {nrank!r}")

@@ -51,7 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from paperlib._checks import check_choice
+from paperlib._checks import check_choice, check_flag
 
 from .envelope import _simulated_curves
 
@@ -217,20 +217,17 @@ def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, r
                  leaveout, use_theory, ties, fun_kwargs, simulate_kwargs, rng, client, workers,
                  progress) -> GlobalTest:
     _check_options(alternative, clamp, leaveout, use_theory, ties)
+    curve_options = dict(model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
+                         simulate_kwargs=simulate_kwargs, client=client, workers=workers)
     if isinstance(observed, pd.DataFrame):
-        given = {name: value for name, value in dict(
-            fun=fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
-            simulate_kwargs=simulate_kwargs, client=client, workers=workers).items() if value is not None}
-        if progress:
-            given["progress"] = progress
-        observed_values, column, simulated, csr = _saved_curves(observed, given)
+        given = {name for name, value in {"fun": fun, **curve_options}.items() if value is not None}
+        observed_values, column, simulated, csr = _saved_curves(observed, given | ({"progress"} if progress else set()))
     else:
         if not callable(fun):
             raise TypeError(f"fun must be a summary function such as Lest, got {type(fun).__name__} {fun!r:.40}")
         observed_values, column, simulated = _simulated_curves(
-            observed, fun, model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
-            simulate_kwargs=simulate_kwargs, rng=rng, client=client, workers=workers, progress=progress,
-            desc="dclf_test" if exponent == 2 else "mad_test")
+            observed, fun, rng=rng, progress=progress, desc="dclf_test" if exponent == 2 else "mad_test",
+            **curve_options)
         csr = model is None and patterns is None
     r, obs = observed_values["r"].to_numpy(), observed_values[column].to_numpy()
     if use_theory is None:
@@ -253,9 +250,9 @@ def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, r
                       leaveout)
 
 
-def _saved_curves(envelope: pd.DataFrame, given: dict):
+def _saved_curves(envelope: pd.DataFrame, given: set):
     """The observed curve, its column, the simulated curves and whether the null was CSR, from an envelope
-    made with ``savefuns=True``; ``given``: the curve-making options passed besides (an error)."""
+    made with ``savefuns=True``; ``given``: the names of curve-making options passed besides (an error)."""
     if given:
         raise ValueError(f"an envelope carries its curves: {', '.join(sorted(given))} must not be given with it")
     missing = {"r", "obs", "theo"} - set(envelope.columns)
@@ -277,8 +274,7 @@ def _check_options(alternative, clamp, leaveout, use_theory, ties) -> None:
     check_choice(ties, TIE_RULES, "ties")
     if isinstance(leaveout, bool) or leaveout not in LEAVEOUT:
         raise ValueError(f"leaveout must be 0, 1 or 2, got {leaveout!r}")
-    if not isinstance(clamp, (bool, np.bool_)):
-        raise TypeError(f"clamp must be True or False, got {clamp!r}")
+    check_flag(clamp, "clamp")
     if use_theory is not None and not isinstance(use_theory, (bool, np.bool_)):
         raise TypeError(f"use_theory must be None, True or False, got {use_theory!r}")
 
