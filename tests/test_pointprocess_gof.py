@@ -197,6 +197,10 @@ def test_repr_names_the_test():
         (dict(alternative="both"), ValueError, "alternative must be one of"),
         (dict(ties="first"), ValueError, "ties must be one of"),
         (dict(leaveout=3), ValueError, "leaveout must be 0, 1 or 2"),
+        # a random fuzz run: an array met `in` and raised NumPy's ambiguous-truth error
+        (dict(leaveout=np.array([[np.nan, 1.0]])), ValueError, "leaveout must be 0, 1 or 2"),
+        (dict(leaveout=np.array([1])), ValueError, "leaveout must be 0, 1 or 2"),
+        (dict(progress=np.zeros(2)), TypeError, "progress"),
         (dict(clamp="yes"), TypeError, "clamp"),
         (dict(use_theory=1), TypeError, "use_theory"),
         (dict(rinterval=(0.2, 0.1)), ValueError, "rinterval must satisfy"),

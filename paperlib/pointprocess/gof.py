@@ -217,6 +217,7 @@ def _global_test(exponent, observed, fun, *, model, patterns, nsim, r, column, r
                  leaveout, use_theory, ties, fun_kwargs, simulate_kwargs, rng, client, workers,
                  progress) -> GlobalTest:
     _check_options(alternative, clamp, leaveout, use_theory, ties)
+    progress = check_flag(progress, "progress")
     curve_options = dict(model=model, patterns=patterns, nsim=nsim, r=r, column=column, fun_kwargs=fun_kwargs,
                          simulate_kwargs=simulate_kwargs, client=client, workers=workers)
     if isinstance(observed, pd.DataFrame):
@@ -272,8 +273,8 @@ def _saved_curves(envelope: pd.DataFrame, given: set):
 def _check_options(alternative, clamp, leaveout, use_theory, ties) -> None:
     check_choice(alternative, ALTERNATIVES, "alternative")
     check_choice(ties, TIE_RULES, "ties")
-    if isinstance(leaveout, bool) or leaveout not in LEAVEOUT:
-        raise ValueError(f"leaveout must be 0, 1 or 2, got {leaveout!r}")
+    if isinstance(leaveout, (bool, np.bool_)) or not isinstance(leaveout, (int, np.integer)) or leaveout not in LEAVEOUT:
+        raise ValueError(f"leaveout must be 0, 1 or 2, got {leaveout!r:.80}")
     check_flag(clamp, "clamp")
     if use_theory is not None and not isinstance(use_theory, (bool, np.bool_)):
         raise TypeError(f"use_theory must be None, True or False, got {use_theory!r}")
