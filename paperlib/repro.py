@@ -610,7 +610,8 @@ def _check_notebook(folder: Path, notebook: str, specs: dict | None) -> list[dic
     except ValueError as exc:
         return [_row(notebook, "", reason=str(exc))]
     recorded = data["statistics"]
-    rows = [_check_statistic(notebook, statistic, spec, recorded, data.get("quality"), data.get(OPTIONAL_PACKAGES_KEY))
+    packages = data.get(OPTIONAL_PACKAGES_KEY)
+    rows = [_check_statistic(notebook, statistic, spec, recorded, data.get("quality"), packages)
             for statistic, spec in specs.items()]
     for statistic in (name for name in recorded if name not in specs):  # recorded order: INDEX.md is reproducible
         if statistic.startswith(TIME_PREFIX):

@@ -161,6 +161,17 @@ def test_neighbours_are_ranked_by_eq4(model):
     np.testing.assert_allclose(model.similarity[:, 0], 1.0)
 
 
+def test_similarity_reaches_its_limits_at_extreme_sigma():
+    """A random fuzz run: sigma = 1e200 raised OverflowError from sigma**2. Huge sigma: every state alike (1);
+    sigma whose square underflows: 1 for equal states, 0 for different ones, as the limits of eq. (4)."""
+    state, weights = np.zeros((3, 3)), np.ones((3, 3))
+    assert state_similarity(state, state + 0.1, weights, 1e200) == 1.0
+    assert state_similarity(state, state, weights, 1e-200) == 1.0
+    assert state_similarity(state, state + 0.1, weights, 1e-200) == 0.0
+    old_formula = (np.exp(-((state - (state + 0.1)) ** 2) / (2.0 * 0.3**2)) * weights).sum() / weights.sum()
+    assert state_similarity(state, state + 0.1, weights, 0.3) == old_formula  # same bits as before the fix
+
+
 def test_kd_tree_pool_finds_most_of_the_exact_neighbours(model):
     """Ground truth: eq. (4) against every state. The pool misses few of the true most similar states."""
     exact = state_similarity(model.states[:, None], model.states[None], model.weights, model.similarity_sigma)

@@ -111,7 +111,8 @@ def _lloyd_step(points: np.ndarray, region) -> np.ndarray:
     return shapely.get_coordinates(centroids)
 
 
-def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0, max_cells: int = MAX_CELLS) -> np.ndarray:
+def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0,
+                     max_cells: int = MAX_CELLS) -> np.ndarray:
     """Relax points by Lloyd's method in a window (the seeding of Barla et al. 2006).
 
     At each iteration every point moves to the centroid of its Voronoi cell intersected with
@@ -176,7 +177,8 @@ def lloyd_relaxation(points, window, iterations: int = 50, *, tol: float = 0.0, 
         raise ValueError(f"tol must be a number >= 0, got {tol!r}") from None
     if not tol >= 0:
         raise ValueError(f"tol must be a number >= 0, got {tol!r}")
-    check_budget(len(points) * iterations, budget(max_cells, "max_cells"), "max_cells", "Voronoi cells (points x iterations)")
+    check_budget(len(points) * iterations, budget(max_cells, "max_cells"), "max_cells",
+                 "Voronoi cells (points x iterations)")
     _check_inside(points, region)
     for _ in range(iterations):
         moved = _lloyd_step(points, region)

@@ -273,7 +273,8 @@ def _saved_curves(envelope: pd.DataFrame, given: set):
 def _check_options(alternative, clamp, leaveout, use_theory, ties) -> None:
     check_choice(alternative, ALTERNATIVES, "alternative")
     check_choice(ties, TIE_RULES, "ties")
-    if isinstance(leaveout, (bool, np.bool_)) or not isinstance(leaveout, (int, np.integer)) or leaveout not in LEAVEOUT:
+    integer = isinstance(leaveout, (int, np.integer)) and not isinstance(leaveout, (bool, np.bool_))
+    if not integer or leaveout not in LEAVEOUT:
         raise ValueError(f"leaveout must be 0, 1 or 2, got {leaveout!r:.80}")
     check_flag(clamp, "clamp")
     if use_theory is not None and not isinstance(use_theory, (bool, np.bool_)):

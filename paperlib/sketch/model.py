@@ -240,7 +240,11 @@ def state_similarity(a, b, weights, sigma: float) -> np.ndarray:
         difference = _wrap(a - b)
     except ValueError:
         raise ValueError(f"a and b must broadcast together, got shapes {a.shape} and {b.shape}") from None
-    gaussian = np.exp(-(difference**2) / (2.0 * sigma**2))
+    # sigma**2 in float64 overflows to inf (all similarities 1) or underflows to 0 instead of raising
+    # OverflowError; 0 / 0 there is an exact match (similarity 1), as it is for every positive sigma
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        gaussian = np.exp(-(difference**2) / (2.0 * np.float64(sigma) ** 2))
+    gaussian[np.isnan(gaussian)] = 1.0
     return (gaussian * weights).sum(axis=(-2, -1)) / weights.sum()
 
 
