@@ -150,6 +150,21 @@ def test_bools_and_strings_are_not_positive_numbers(bad):
     assert positive_number(np.float32(2.5), "radius") == 2.5 and positive_number(3, "radius") == 3.0
 
 
+def test_an_eighth_random_fuzz_run_gets_messages_naming_the_parameter(tmp_path):
+    """'~user' of an unknown user raised pathlib's RuntimeError; a short theta and a wrong amacrine file were
+    refused naming no parameter of the function called (``path`` of close_curve; the file itself)."""
+    from paperlib.datasets import amacrine_exemplar
+    from paperlib.sketch import coarse_ring
+    from paperlib.widgets import mlts_explorer
+
+    _raises(ValueError, r"^output_dir names the home of an unknown user", mlts_explorer, output_dir="~no_such_user_x",
+            size=37)
+    _raises(ValueError, r"^theta must hold at least 3 angles", coarse_ring, [0.1], 1.0, (0.0, 0.0))
+    (tmp_path / "x.json").write_text("{}")
+    _raises(ValueError, r"^path '.*x\.json' does not hold the amacrine pattern", amacrine_exemplar,
+            path=tmp_path / "x.json")
+
+
 def test_as_generator_is_default_rng_bit_for_bit():
     for seed in (None, 0, 12345, np.random.SeedSequence(7)):
         if seed is None:

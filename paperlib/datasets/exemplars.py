@@ -953,7 +953,9 @@ def amacrine_exemplar(*, chars=("x", "o"), size: float = 0.02, font: str = "futu
         categories = tuple(str(c) for c in data["categories"])
         marks = np.array([categories.index(m) for m in data["marks"]], dtype=np.int64)
     except (KeyError, TypeError, ValueError, json.JSONDecodeError) as exc:
-        raise ValueError(f"{fixture} does not hold the amacrine pattern (datasets.amacrine.pattern): {exc!r}") from None
+        where = "the repository's fixture" if path is None else "path"
+        raise ValueError(f"{where} {str(fixture)!r} does not hold the amacrine pattern (datasets.amacrine.pattern): "
+                         f"{exc!r:.200}") from None
     if len(categories) != 2:
         raise ValueError(f"expected the two amacrine categories, got {categories!r}")
     inner = Window.rectangle(xrange, yrange)

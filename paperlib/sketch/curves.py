@@ -554,6 +554,8 @@ def coarse_ring(theta, step: float, start) -> np.ndarray:
         finite point.
     """
     theta = finite_array(theta, "theta", ndim=1)
+    if theta.size < 3:
+        raise ValueError(f"theta must hold at least 3 angles (a closed curve), got {theta.size}")
     try:
         ring = integrate_angles(close_angles(theta), step, start=start)[:-1]
         if shapely.LinearRing(ring).is_simple:

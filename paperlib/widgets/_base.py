@@ -38,6 +38,15 @@ def figure_settings(figsize, dpi) -> tuple[tuple[float, float], int]:
     return (width, height), dpi
 
 
+def expanded_path(text, name: str) -> Path:
+    """``Path(text).expanduser()``, or a ValueError naming ``name`` where ``~user`` is a user this machine
+    does not know (pathlib raises RuntimeError there)."""
+    try:
+        return Path(text).expanduser()
+    except RuntimeError:
+        raise ValueError(f"{name} names the home of an unknown user, got {str(text)!r:.80}") from None
+
+
 def check_file_root(file_root) -> Path | None:
     """The folder an explorer's file boxes are confined to, checked: None (anywhere) or an existing folder.
 
@@ -58,10 +67,7 @@ def check_file_root(file_root) -> Path | None:
         raise TypeError(f"file_root must be None, a str or a Path, got {type(file_root).__name__}")
     if not str(file_root).strip() or "\0" in str(file_root):
         raise ValueError(f"file_root must name a folder, got {str(file_root)!r:.80}")
-    try:
-        folder = Path(file_root).expanduser().resolve()
-    except RuntimeError:  # '~name' for a user this machine does not know
-        raise ValueError(f"file_root names the home of an unknown user, got {str(file_root)!r:.80}") from None
+    folder = expanded_path(file_root, "file_root").resolve()
     if not folder.is_dir():
         raise ValueError(f"file_root must be an existing folder, got {str(file_root)!r}")
     return folder
@@ -91,7 +97,7 @@ def user_path(text, file_root: Path | None, what: str) -> Path:
     if not text:
         raise ValueError(f"no path given: type one in the '{what}' box")
     if file_root is None:
-        return Path(text).expanduser()
+        return expanded_path(text, f"the path in the '{what}' box")
     path = (file_root / text).resolve()
     if path != file_root and file_root not in path.parents:
         raise ValueError(f"the path {text!r} in the '{what}' box is outside the folder this app may use "

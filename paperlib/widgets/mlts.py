@@ -113,7 +113,7 @@ from paperlib.mlts import (
     write_texture_svg,
 )
 from paperlib.mlts.script import _pixels
-from paperlib.widgets._base import ExplorerBase, check_file_root, uploaded_file, user_path
+from paperlib.widgets._base import ExplorerBase, check_file_root, expanded_path, uploaded_file, user_path
 
 __all__ = ["EXPORT_FORMATS", "LAYER_FIELDS", "MAX_TRIED", "MLTSExplorer", "STRUCTURE_CACHE", "default_output_dir",
            "default_script", "mlts_explorer", "png_bytes"]
@@ -179,7 +179,7 @@ def _check_output_dir(folder, name: str = "output folder") -> Path:
     ``name``: the parameter (or the box, ``"output folder"``) it came from, for the messages."""
     if not str(folder).strip():
         raise ValueError(f"no {name} given: type a folder in 'output folder'")
-    path = Path(folder).expanduser()
+    path = expanded_path(folder, name)
     root = _repository_root()
     figures = (root if root is not None else Path.cwd()) / "figures"
     resolved = path.resolve()
